@@ -1,0 +1,169 @@
+#include "commands.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "dtlab/engine/point_set_info.hpp"
+#include "dtlab/engine/validator.hpp"
+#include "dtlab/generators/generators.hpp"
+#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/io/point_readers.hpp"
+#include "dtlab/predicates/audit.hpp"
+#include "input.hpp"
+
+namespace dtlab::cli {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+void write_points(const std::string& path, const std::vector<predicates::Point3>& points) {
+  if (ends_with(path, ".node")) {
+    io::write_node(path, points);
+  } else if (ends_with(path, ".xyz")) {
+    io::write_xyz(path, points);
+  } else {
+    throw std::invalid_argument(path + ": output must end in .xyz or .node");
+  }
+}
+
+}  // namespace
+
+int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed, const std::string& output) {
+  const generators::GeneratedPoints g = generators::generate(family, n, seed);
+  if (!g.note.empty()) std::fprintf(stderr, "dtlab: %s\n", g.note.c_str());
+  write_points(output, g.points);
+  std::fprintf(stderr, "dtlab: wrote %zu points to %s\n", g.points.size(), output.c_str());
+  return 0;
+}
+
+int run_info(const std::string& input, std::uint64_t seed) {
+  const auto points = load_input(input, seed);
+  const engine::PointSetInfo info = engine::analyze(points);
+  std::printf("input:               %s\n", input.c_str());
+  std::printf("points:              %llu\n", static_cast<unsigned long long>(info.count));
+  std::printf("distinct points:     %llu\n", static_cast<unsigned long long>(info.distinct));
+  std::printf("exact duplicates:    %llu\n", static_cast<unsigned long long>(info.duplicates));
+  std::printf("bounding box:        [%.17g .. %.17g] x [%.17g .. %.17g] x [%.17g .. %.17g]\n",
+              info.min.x, info.max.x, info.min.y, info.max.y, info.min.z, info.max.z);
+  std::printf("dimension:           %s\n", engine::dimension_name(info.dimension).c_str());
+  std::printf("coplanar:            %s\n", info.dimension <= 2 ? "yes" : "no");
+  std::printf("collinear:           %s\n", info.dimension <= 1 ? "yes" : "no");
+  std::printf("magnitude range:     %.6g .. %.6g (smallest nonzero |coordinate| .. largest)\n",
+              info.min_abs_nonzero, info.max_abs);
+  std::printf("adaptive range:      %s\n",
+              info.adaptive_range_ok ? "ok (exact after power-of-two scaling)"
+                                     : "too wide: use --predicates exact");
+  return 0;
+}
+
+int run_triangulate(const TriangulateArgs& args) {
+  if (args.method != "sequential") {
+    throw std::invalid_argument("--method " + args.method + " is not available yet (only sequential)");
+  }
+  if (args.threads != 1) throw std::invalid_argument("the sequential method runs on one thread");
+  if (!args.output.empty() && !ends_with(args.output, ".ele") && !ends_with(args.output, ".vtu")) {
+    throw std::invalid_argument(args.output + ": output must end in .ele or .vtu");
+  }
+  const auto points = load_input(args.input, args.options.seed);
+  const engine::Triangulation result = engine::triangulate(points, args.options);
+
+  std::optional<engine::ValidationReport> report;
+  if (args.validate) report = engine::validate(points, result.tetrahedra);
+
+  if (!args.output.empty()) {
+    if (ends_with(args.output, ".ele")) {
+      io::write_node(args.output.substr(0, args.output.size() - 4) + ".node", points);
+      io::write_ele(args.output, result.tetrahedra);
+    } else {
+      std::vector<io::CellArray> cells;
+      if (report) cells.push_back({"non_delaunay", report->non_delaunay_flags});
+      io::write_vtu(args.output, points, result.tetrahedra, cells);
+    }
+  }
+
+  std::string json = engine::stats_json(result.stats, args.options, args.method, args.threads);
+  if (report) {
+    json.pop_back();  // '}'
+    while (!json.empty() && (json.back() == '\n' || json.back() == ' ')) json.pop_back();
+    std::string validation = report->json();
+    std::string indented;
+    for (const char c : validation) {
+      indented += c;
+      if (c == '\n') indented += "  ";
+    }
+    json += ",\n  \"validation\": " + indented + "\n}";
+  }
+  if (args.stats == "-") {
+    std::cout << json << "\n";
+  } else {
+    if (!args.stats.empty()) {
+      std::ofstream out(args.stats);
+      if (!out) throw std::runtime_error(args.stats + ": cannot open for writing");
+      out << json << "\n";
+    }
+    const auto& s = result.stats;
+    std::printf("triangulated %llu points (%llu inserted, %llu duplicates, %llu abandoned) into "
+                "%llu tetrahedra in %.3f s [%s, %s, %s, seed %llu]\n",
+                static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.inserted),
+                static_cast<unsigned long long>(s.duplicates),
+                static_cast<unsigned long long>(s.abandoned_insertions),
+                static_cast<unsigned long long>(s.tetrahedra), s.seconds.total,
+                engine::to_string(args.options.kernel), engine::to_string(args.options.bounding),
+                args.method.c_str(), static_cast<unsigned long long>(args.options.seed));
+    std::printf("  time: location %.3f s, subdivision %.3f s, legalization %.3f s, other %.3f s\n",
+                s.seconds.location, s.seconds.subdivision, s.seconds.legalization, s.seconds.other);
+    std::printf("  flips: S23 %llu, S32 %llu, S22 %llu, S44 %llu; DAG nodes %llu; peak RSS %.1f MiB\n",
+                static_cast<unsigned long long>(s.flips.s23), static_cast<unsigned long long>(s.flips.s32),
+                static_cast<unsigned long long>(s.flips.s22), static_cast<unsigned long long>(s.flips.s44),
+                static_cast<unsigned long long>(s.dag_nodes),
+                static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0));
+    if (s.hull_tetrahedra_lost >= 0) {
+      std::printf("  aux-tet: %lld tetrahedra of the exact convex hull triangulation lost\n",
+                  static_cast<long long>(s.hull_tetrahedra_lost));
+    }
+    if (report) {
+      std::printf("  validation (%s predicates): %s; non-Delaunay faces %llu, consistent: %s\n",
+                  report->kernel.c_str(), report->valid() ? "VALID" : "INVALID",
+                  static_cast<unsigned long long>(report->non_delaunay_faces),
+                  report->consistent() ? "yes" : "no");
+    }
+  }
+  return report && !report->valid() ? 1 : 0;
+}
+
+int run_validate(const std::string& points_path, const std::string& mesh) {
+  const auto points = io::read_points(points_path);
+  const int base = io::node_index_base(points_path);
+  const auto tets = io::read_ele(mesh, points.size(), base);
+  const engine::ValidationReport report = engine::validate(points, tets);
+  std::cout << report.json() << "\n";
+  return report.valid() ? 0 : 1;
+}
+
+int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel) {
+  const auto points = load_input(input, seed);
+  engine::TriangulateOptions options;
+  options.kernel = kernel;
+  options.seed = seed;
+  options.audit = true;
+  predicates::audit_counters().reset();
+  const engine::Triangulation result = engine::triangulate(points, options);
+  std::printf("predicate calls made by triangulating %s (%zu points, seed %llu, %s kernel):\n",
+              input.c_str(), points.size(), static_cast<unsigned long long>(seed),
+              engine::to_string(kernel));
+  std::printf("%s", predicates::audit_table(engine::to_string(kernel)).c_str());
+  if (kernel != engine::KernelKind::Fast) {
+    std::printf("(wrong sign is measured for the fast kernel only, against the exact kernel)\n");
+  } else {
+    std::printf("(stages apply to the adaptive kernel only)\n");
+  }
+  std::printf("tetrahedra: %zu, abandoned insertions: %llu\n", result.tetrahedra.size(),
+              static_cast<unsigned long long>(result.stats.abandoned_insertions));
+  return 0;
+}
+
+}  // namespace dtlab::cli

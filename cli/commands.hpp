@@ -1,0 +1,27 @@
+#pragma once
+// The dtlab subcommands. Each returns the process exit code: 0 success, 1 a check failed
+// (validation), 2 an error (bad input, unreadable file).
+#include <cstdint>
+#include <string>
+
+#include "dtlab/engine/triangulate.hpp"
+
+namespace dtlab::cli {
+
+struct TriangulateArgs {
+  std::string input;
+  std::string output;
+  std::string stats;
+  std::string method = "sequential";
+  int threads = 1;
+  bool validate = false;
+  engine::TriangulateOptions options;
+};
+
+int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed, const std::string& output);
+int run_info(const std::string& input, std::uint64_t seed);
+int run_triangulate(const TriangulateArgs& args);
+int run_validate(const std::string& points, const std::string& mesh);
+int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel);
+
+}  // namespace dtlab::cli

@@ -1,0 +1,97 @@
+// dtlab: command line entry point.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "commands.hpp"
+#include "dtlab/engine/triangulate.hpp"
+#include "dtlab/io/input_error.hpp"
+
+int main(int argc, char** argv) {
+  using dtlab::engine::Bounding;
+  using dtlab::engine::KernelKind;
+  CLI::App app{"dtlab: a testbed for parallel 3D Delaunay triangulation with robust predicates"};
+  app.require_subcommand(1);
+  const std::map<std::string, KernelKind> kernels{
+      {"fast", KernelKind::Fast}, {"adaptive", KernelKind::Adaptive}, {"exact", KernelKind::Exact}};
+  const std::map<std::string, Bounding> boundings{{"infinite", Bounding::Infinite},
+                                                  {"aux-tet", Bounding::AuxTet}};
+
+  std::uint64_t seed = 1;
+  std::string family;
+  std::int64_t count = 0;
+  std::string output;
+  auto* generate = app.add_subcommand("generate", "write a generated point set (.xyz or .node)");
+  generate->add_option("DIST", family, "distribution (uniform, grid, sphere, ...)")->required();
+  generate->add_option("N", count, "number of points asked for")->required();
+  generate->add_option("--seed", seed, "random seed");
+  generate->add_option("-o,--output", output, "output file (.xyz or .node)")->required();
+
+  std::string input;
+  auto* info = app.add_subcommand("info", "facts about a point set: counts, duplicates, dimension");
+  info->add_option("INPUT", input, "point file or generator spec (e.g. uniform:1000)")->required();
+  info->add_option("--seed", seed, "seed for a generator spec");
+
+  dtlab::cli::TriangulateArgs targs;
+  auto* tri = app.add_subcommand("triangulate", "Delaunay tetrahedralization of a point set");
+  tri->add_option("INPUT", targs.input, "point file or generator spec")->required();
+  tri->add_option("--predicates", targs.options.kernel, "fast | adaptive | exact")
+      ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
+  tri->add_option("--method", targs.method, "lock method (sequential)");
+  tri->add_option("--threads", targs.threads, "worker threads");
+  std::string location = "dag";
+  tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
+  tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
+      ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
+  tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed");
+  tri->add_option("-o,--output", targs.output, "mesh output (.ele writes .node beside it, or .vtu)");
+  tri->add_option("--stats", targs.stats, "write stats JSON to FILE, or - for stdout");
+  tri->add_flag("--validate", targs.validate, "check the result with the exact validator");
+  tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
+                  "flip bound per insertion (abandon beyond)");
+
+  std::string points_path;
+  std::string mesh_path;
+  auto* validate = app.add_subcommand("validate", "exact validation of a mesh (.node + .ele)");
+  validate->add_option("POINTS", points_path, "the points (.node, .xyz, ...)")->required();
+  validate->add_option("MESH", mesh_path, "the tetrahedra (.ele)")->required();
+
+  KernelKind audit_kernel = KernelKind::Adaptive;
+  auto* audit = app.add_subcommand("predicates-audit",
+                                   "predicate calls per stage while triangulating INPUT");
+  audit->add_option("INPUT", input, "point file or generator spec")->required();
+  audit->add_option("--seed", seed, "seed");
+  audit->add_option("--predicates", audit_kernel, "fast | adaptive | exact")
+      ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*generate) return dtlab::cli::run_generate(family, count, seed, output);
+    if (*info) return dtlab::cli::run_info(input, seed);
+    if (*tri) {
+      targs.options.progress = isatty(STDERR_FILENO) != 0;
+      return dtlab::cli::run_triangulate(targs);
+    }
+    if (*validate) return dtlab::cli::run_validate(points_path, mesh_path);
+    if (*audit) return dtlab::cli::run_predicates_audit(input, seed, audit_kernel);
+  } catch (const dtlab::io::InputError& e) {
+    std::fprintf(stderr, "dtlab: error: %s\n", e.what());
+    return 2;
+  } catch (const dtlab::engine::TriangulationError& e) {
+    std::fprintf(stderr, "dtlab: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dtlab: error: %s\n", e.what());
+    return 2;
+  }
+  return 2;
+}

@@ -1,0 +1,87 @@
+#pragma once
+// Sequential randomized incremental Delaunay triangulation by flips with DAG point location
+// (Kohout and Kolingerova 2003, Sect. 4), parameterized over the predicate kernel.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/predicates/point.hpp"
+
+namespace dtlab::engine {
+
+using io::Tetrahedron;
+using predicates::Point3;
+
+enum class KernelKind { Fast, Adaptive, Exact };
+enum class Bounding { Infinite, AuxTet };
+enum class Location { Dag };
+
+const char* to_string(KernelKind k);
+const char* to_string(Bounding b);
+const char* to_string(Location l);
+
+struct TriangulateOptions {
+  KernelKind kernel = KernelKind::Adaptive;
+  Bounding bounding = Bounding::Infinite;
+  Location location = Location::Dag;
+  std::uint64_t seed = 1;
+  // Bounds that keep the fast kernel from hanging: a breach abandons the insertion and counts it.
+  std::uint64_t max_flips_per_insertion = 1'000'000;
+  std::uint64_t max_location_steps = 100'000'000;
+  // Count predicate calls per stage (predicates-audit); costs a little.
+  bool audit = false;
+  // Progress bar on stderr (the CLI turns it on only for a terminal).
+  bool progress = false;
+};
+
+struct FlipCounts {
+  std::uint64_t s23 = 0;
+  std::uint64_t s32 = 0;
+  std::uint64_t s22 = 0;
+  std::uint64_t s44 = 0;
+};
+
+struct PhaseSeconds {
+  double total = 0.0;
+  double location = 0.0;
+  double subdivision = 0.0;
+  double legalization = 0.0;
+  double other = 0.0;
+};
+
+struct TriangulationStats {
+  std::uint64_t points = 0;
+  std::uint64_t inserted = 0;
+  std::uint64_t duplicates = 0;
+  std::uint64_t tetrahedra = 0;
+  PhaseSeconds seconds;
+  FlipCounts flips;
+  std::uint64_t dag_nodes = 0;
+  std::uint64_t predicate_calls = 0;
+  std::uint64_t abandoned_insertions = 0;
+  std::int64_t hull_tetrahedra_lost = -1;  // aux-tet only; -1 when not measured
+  std::uint64_t peak_rss_bytes = 0;
+  std::int32_t scale_exponent = 0;  // inputs were multiplied by 2^scale_exponent (exact)
+};
+
+struct Triangulation {
+  std::vector<Tetrahedron> tetrahedra;  // finite, positively oriented, input point ids
+  TriangulationStats stats;
+};
+
+// The input has no tetrahedralization (fewer than 4 distinct points, all coplanar) or lies outside
+// what the chosen kernel can decide exactly.
+class TriangulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+Triangulation triangulate(const std::vector<Point3>& points, const TriangulateOptions& options);
+
+// The stats and the options as one JSON object (the --stats output).
+std::string stats_json(const TriangulationStats& stats, const TriangulateOptions& options,
+                       const std::string& method, int threads);
+
+}  // namespace dtlab::engine

@@ -1,0 +1,254 @@
+// Driver of the sequential engine: input scaling, insertion order, bounding, kernel dispatch,
+// stats.
+#include "dtlab/engine/triangulate.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "dtlab/engine/point_set_info.hpp"
+#include "dtlab/generators/random.hpp"
+#include "dtlab/predicates/audit.hpp"
+#include "dtlab/predicates/kernels.hpp"
+#include "dtlab/predicates/valid_range.hpp"
+#include "incremental_delaunay.hpp"
+
+namespace dtlab::engine {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::uint64_t peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  generators::detail::Random rng(seed);
+  for (std::size_t i = n; i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+  return order;
+}
+
+class Progress {
+ public:
+  Progress(bool enabled, std::size_t total) : enabled_(enabled), total_(total), start_(Clock::now()) {}
+  void update(std::size_t done) {
+    if (!enabled_ || (done & 0x3FFF) != 0) return;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (elapsed < 2.0) return;
+    std::fprintf(stderr, "\r[dtlab] inserted %zu / %zu points (%.0f%%), %.1f s", done, total_,
+                 100.0 * static_cast<double>(done) / static_cast<double>(total_), elapsed);
+    shown_ = true;
+  }
+  ~Progress() {
+    if (shown_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  std::size_t total_;
+  Clock::time_point start_;
+  bool shown_ = false;
+};
+
+template <class K>
+std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t input_count,
+                             const std::vector<std::uint32_t>& order,
+                             const std::array<std::uint32_t, 4>& first, bool skip_first,
+                             const TriangulateOptions& options, TriangulationStats& stats) {
+  IncrementalDelaunay<K> dt(points, options, stats);
+  dt.start(first[0], first[1], first[2], first[3]);
+  if (skip_first) stats.inserted += 4;
+  Progress progress(options.progress, order.size());
+  std::size_t done = 0;
+  for (const std::uint32_t v : order) {
+    progress.update(++done);
+    if (skip_first && (v == first[0] || v == first[1] || v == first[2] || v == first[3])) continue;
+    switch (dt.insert(v)) {
+      case IncrementalDelaunay<K>::Outcome::Inserted: ++stats.inserted; break;
+      case IncrementalDelaunay<K>::Outcome::Duplicate: ++stats.duplicates; break;
+      case IncrementalDelaunay<K>::Outcome::Abandoned: ++stats.abandoned_insertions; break;
+    }
+  }
+  stats.dag_nodes = dt.dag_nodes();
+  stats.predicate_calls = dt.predicate_calls();
+  return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
+}
+
+template <class K>
+std::vector<Tetrahedron> run_kernel(const std::vector<Point3>& points, std::size_t input_count,
+                                    const std::vector<std::uint32_t>& order,
+                                    const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                    const TriangulateOptions& options, TriangulationStats& stats) {
+  if (options.audit) {
+    return run<predicates::Audited<K>>(points, input_count, order, first, skip_first, options, stats);
+  }
+  return run<K>(points, input_count, order, first, skip_first, options, stats);
+}
+
+std::vector<Tetrahedron> dispatch(const std::vector<Point3>& points, std::size_t input_count,
+                                  const std::vector<std::uint32_t>& order,
+                                  const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                  const TriangulateOptions& options, TriangulationStats& stats) {
+  switch (options.kernel) {
+    case KernelKind::Fast:
+      return run_kernel<predicates::FastKernel>(points, input_count, order, first, skip_first, options, stats);
+    case KernelKind::Exact:
+      return run_kernel<predicates::ExactKernel>(points, input_count, order, first, skip_first, options, stats);
+    case KernelKind::Adaptive:
+      break;
+  }
+  return run_kernel<predicates::AdaptiveKernel>(points, input_count, order, first, skip_first, options, stats);
+}
+
+// Canonical form of a tetrahedron (sorted ids) for comparing meshes.
+std::vector<Tetrahedron> canonical(std::vector<Tetrahedron> tets) {
+  for (auto& t : tets) std::sort(t.begin(), t.end());
+  std::sort(tets.begin(), tets.end());
+  return tets;
+}
+
+}  // namespace
+
+const char* to_string(KernelKind k) {
+  switch (k) {
+    case KernelKind::Fast: return "fast";
+    case KernelKind::Adaptive: return "adaptive";
+    case KernelKind::Exact: return "exact";
+  }
+  return "?";
+}
+const char* to_string(Bounding b) { return b == Bounding::Infinite ? "infinite" : "aux-tet"; }
+const char* to_string(Location) { return "dag"; }
+
+Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOptions& options) {
+  const auto start = Clock::now();
+  Triangulation result;
+  TriangulationStats& stats = result.stats;
+  stats.points = input.size();
+  if (input.size() >= static_cast<std::size_t>(kInfiniteVertex) - 8) {
+    throw TriangulationError("too many points for 32-bit vertex ids");
+  }
+
+  // Exact power-of-two scaling into the adaptive kernel's valid range (signs are unchanged).
+  std::vector<Point3> points = input;
+  if (options.kernel == KernelKind::Adaptive) {
+    double max_abs = 0.0;
+    double min_abs = 0.0;
+    for (const Point3& p : input) {
+      for (const double c : {p.x, p.y, p.z}) {
+        if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
+        const double m = std::fabs(c);
+        max_abs = std::max(max_abs, m);
+        if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
+      }
+    }
+    const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+    if (!scaling.fits) {
+      char message[320];
+      std::snprintf(message, sizeof message,
+                    "coordinate magnitudes span %.3g .. %.3g, more than the adaptive kernel can "
+                    "decide exactly (ratio above 2^%d, see docs/predicates.md); use "
+                    "--predicates exact",
+                    min_abs, max_abs, predicates::kScaledMaxExponent - 1 - predicates::kRangeMinExponent);
+      throw TriangulationError(message);
+    }
+    stats.scale_exponent = scaling.exponent;
+    for (Point3& p : points) {
+      p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
+           std::ldexp(p.z, scaling.exponent)};
+    }
+  }
+
+  const std::vector<std::uint32_t> order = random_order(input.size(), options.seed);
+  const SimplexSearch search = find_simplex(input, order);
+  if (!search.simplex) {
+    throw TriangulationError("no tetrahedralization exists: the affine dimension of the " +
+                             std::to_string(input.size()) + " input points is " +
+                             dimension_name(search.dimension) +
+                             "; at least 4 points not in one plane are needed");
+  }
+
+  if (options.bounding == Bounding::Infinite) {
+    result.tetrahedra = dispatch(points, input.size(), order, *search.simplex, true, options, stats);
+  } else {
+    // The paper's auxiliary tetrahedron: (m,0,0), (0,m,0), (0,0,m), (-m,-m,-m) around the box
+    // centre, m = 200 x the box size; removed with every tetrahedron touching it at the end.
+    Point3 lo = points[0];
+    Point3 hi = points[0];
+    for (const Point3& p : points) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const double m = 200.0 * size;
+    const Point3 c{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
+    const auto n = static_cast<std::uint32_t>(points.size());
+    points.push_back({c.x + m, c.y, c.z});
+    points.push_back({c.x, c.y + m, c.z});
+    points.push_back({c.x, c.y, c.z + m});
+    points.push_back({c.x - m, c.y - m, c.z - m});
+    result.tetrahedra = dispatch(points, input.size(), order, {n, n + 1, n + 2, n + 3}, false, options, stats);
+  }
+  stats.tetrahedra = result.tetrahedra.size();
+  stats.seconds.total = std::chrono::duration<double>(Clock::now() - start).count();
+  stats.seconds.other = std::max(0.0, stats.seconds.total - stats.seconds.location -
+                                          stats.seconds.subdivision - stats.seconds.legalization);
+
+  if (options.bounding == Bounding::AuxTet) {
+    // Measured outside seconds.total: the exact hull's tetrahedra that the auxiliary run lost.
+    TriangulateOptions reference = options;
+    reference.bounding = Bounding::Infinite;
+    reference.audit = false;
+    reference.progress = false;
+    const auto exact = canonical(triangulate(input, reference).tetrahedra);
+    const auto aux = canonical(result.tetrahedra);
+    std::vector<Tetrahedron> lost;
+    std::set_difference(exact.begin(), exact.end(), aux.begin(), aux.end(), std::back_inserter(lost));
+    stats.hull_tetrahedra_lost = static_cast<std::int64_t>(lost.size());
+  }
+  stats.peak_rss_bytes = peak_rss_bytes();
+  return result;
+}
+
+std::string stats_json(const TriangulationStats& s, const TriangulateOptions& options,
+                       const std::string& method, int threads) {
+  nlohmann::ordered_json j;
+  j["points"] = s.points;
+  j["inserted"] = s.inserted;
+  j["duplicates"] = s.duplicates;
+  j["tetrahedra"] = s.tetrahedra;
+  j["seconds"] = {{"total", s.seconds.total},
+                  {"location", s.seconds.location},
+                  {"subdivision", s.seconds.subdivision},
+                  {"legalization", s.seconds.legalization},
+                  {"other", s.seconds.other}};
+  j["flips"] = {{"S23", s.flips.s23}, {"S32", s.flips.s32}, {"S22", s.flips.s22}, {"S44", s.flips.s44}};
+  j["dag_nodes"] = s.dag_nodes;
+  j["predicate_calls"] = s.predicate_calls;
+  j["abandoned_insertions"] = s.abandoned_insertions;
+  if (s.hull_tetrahedra_lost >= 0) {
+    j["hull_tetrahedra_lost"] = s.hull_tetrahedra_lost;
+  } else {
+    j["hull_tetrahedra_lost"] = nullptr;
+  }
+  j["peak_rss_bytes"] = s.peak_rss_bytes;
+  j["scale_exponent"] = s.scale_exponent;
+  j["method"] = method;
+  j["threads"] = threads;
+  j["predicates"] = to_string(options.kernel);
+  j["location"] = to_string(options.location);
+  j["bounding"] = to_string(options.bounding);
+  j["seed"] = options.seed;
+  return j.dump(2);
+}
+
+}  // namespace dtlab::engine

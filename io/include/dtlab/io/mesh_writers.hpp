@@ -1,0 +1,42 @@
+#pragma once
+// Mesh output: TetGen .node + .ele, VTK XML .vtu (ParaView), and the .ele reader that
+// `dtlab validate` uses. Writers go through a temporary file that is renamed into place only
+// when complete, so an error never leaves a half-written output behind.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dtlab/predicates/point.hpp"
+
+namespace dtlab::io {
+
+using predicates::Point3;
+using Tetrahedron = std::array<std::uint32_t, 4>;
+
+// A named per-tetrahedron array for the .vtu (e.g. "non_delaunay", "suspicious").
+struct CellArray {
+  std::string name;
+  std::vector<std::int32_t> values;
+};
+
+// Writes `points` (input order, duplicates included) as TetGen .node, index base 0.
+void write_node(const std::string& path, const std::vector<Point3>& points);
+// Writes the tetrahedra as TetGen .ele, index base 0, vertices referring to the .node.
+void write_ele(const std::string& path, const std::vector<Tetrahedron>& tets);
+void write_xyz(const std::string& path, const std::vector<Point3>& points);
+void write_vtu(const std::string& path, const std::vector<Point3>& points,
+               const std::vector<Tetrahedron>& tets, const std::vector<CellArray>& cell_data);
+
+// Reads a TetGen .ele (index base 0 or 1, taken from the first tetrahedron's index and the
+// referenced .node's base); returns 0-based vertex ids. `point_count` bounds the ids.
+std::vector<Tetrahedron> read_ele(const std::string& path, std::size_t point_count,
+                                  int node_index_base);
+
+// Index base of a .node file (0 or 1), or 0 when the file is not a .node.
+int node_index_base(const std::string& path);
+
+// Shortest text that parses back to exactly `v`.
+std::string format_double(double v);
+
+}  // namespace dtlab::io

@@ -1,0 +1,94 @@
+#pragma once
+// Line-oriented scanning of text formats, with the line number for error messages.
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "dtlab/io/input_error.hpp"
+
+namespace dtlab::io::detail {
+
+class TextScanner {
+ public:
+  TextScanner(std::string_view text, std::string name) : text_(text), name_(std::move(name)) {}
+
+  // Next line that is neither blank nor a comment ('#' starts a comment); false at the end.
+  bool next_content_line(std::string_view& line) {
+    while (pos_ < text_.size()) {
+      std::size_t end = text_.find('\n', pos_);
+      if (end == std::string_view::npos) end = text_.size();
+      std::string_view raw = text_.substr(pos_, end - pos_);
+      pos_ = end + 1;
+      ++line_number_;
+      if (const std::size_t hash = raw.find('#'); hash != std::string_view::npos) {
+        raw = raw.substr(0, hash);
+      }
+      raw = trim(raw);
+      if (!raw.empty()) {
+        line = raw;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  [[nodiscard]] std::size_t line_number() const { return line_number_; }
+  [[nodiscard]] const std::string& name() const { return name_; }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(name_ + ":" + std::to_string(line_number_) + ": " + what);
+  }
+
+  static std::string_view trim(std::string_view s) {
+    while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+    return s;
+  }
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+  // Splits off the next whitespace-separated token of `line`; false when none is left.
+  static bool next_token(std::string_view& line, std::string_view& token) {
+    while (!line.empty() && is_space(line.front())) line.remove_prefix(1);
+    if (line.empty()) return false;
+    std::size_t n = 0;
+    while (n < line.size() && !is_space(line[n])) ++n;
+    token = line.substr(0, n);
+    line.remove_prefix(n);
+    return true;
+  }
+
+  // Parses a finite double token, or fails naming `what`.
+  double parse_double(std::string_view token, const char* what) const {
+    double v = 0.0;
+    const char* first = token.data();
+    if (!token.empty() && token.front() == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), v);
+    if (ec != std::errc() || ptr != token.data() + token.size()) {
+      if (ec == std::errc::result_out_of_range) {
+        fail(std::string(what) + " '" + std::string(token) + "' is out of the range of double");
+      }
+      fail(std::string("expected a number for ") + what + ", got '" + std::string(token) + "'");
+    }
+    if (!std::isfinite(v)) fail(std::string(what) + " is not finite (" + std::string(token) + ")");
+    return v;
+  }
+
+  std::int64_t parse_integer(std::string_view token, const char* what) const {
+    std::int64_t v = 0;
+    const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+    if (ec != std::errc() || ptr != token.data() + token.size()) {
+      fail(std::string("expected an integer for ") + what + ", got '" + std::string(token) + "'");
+    }
+    return v;
+  }
+
+ private:
+  std::string_view text_;
+  std::string name_;
+  std::size_t pos_ = 0;
+  std::size_t line_number_ = 0;
+};
+
+}  // namespace dtlab::io::detail

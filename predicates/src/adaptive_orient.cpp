@@ -1,0 +1,114 @@
+// Adaptive orient3d and orient2d (Shewchuk, DCG 18, 1997, Sect. 4.2 and 6).
+#include <cmath>
+
+#include "dtlab/predicates/error_bounds.hpp"
+#include "dtlab/predicates/kernels.hpp"
+#include "expansion_ops.hpp"
+
+namespace dtlab::predicates {
+namespace {
+
+using detail::add;
+using detail::Exp;
+using detail::scale;
+using expansion::two_diff_tail;
+
+int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+
+// Stages B, C and D of Shewchuk's orient3d, his sign: det[a - d; b - d; c - d].
+StagedSign orient3d_adapt(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                          double permanent) {
+  const double adx = a.x - d.x;
+  const double bdx = b.x - d.x;
+  const double cdx = c.x - d.x;
+  const double ady = a.y - d.y;
+  const double bdy = b.y - d.y;
+  const double cdy = c.y - d.y;
+  const double adz = a.z - d.z;
+  const double bdz = b.z - d.z;
+  const double cdz = c.z - d.z;
+
+  // Stage B: the determinant of the rounded differences, exactly.
+  const Exp<4> bc = detail::minor2(bdx, bdy, cdx, cdy);
+  const Exp<4> ca = detail::minor2(cdx, cdy, adx, ady);
+  const Exp<4> ab = detail::minor2(adx, ady, bdx, bdy);
+  const Exp<24> fin = add(add(scale(bc, adz), scale(ca, bdz)), scale(ab, cdz));
+  double det = fin.estimate();
+  double errbound = bounds::kOrient3dB * permanent;
+  if (det >= errbound || -det >= errbound) return {sign_of(det), Stage::B};
+
+  const double adxtail = two_diff_tail(a.x, d.x, adx);
+  const double bdxtail = two_diff_tail(b.x, d.x, bdx);
+  const double cdxtail = two_diff_tail(c.x, d.x, cdx);
+  const double adytail = two_diff_tail(a.y, d.y, ady);
+  const double bdytail = two_diff_tail(b.y, d.y, bdy);
+  const double cdytail = two_diff_tail(c.y, d.y, cdy);
+  const double adztail = two_diff_tail(a.z, d.z, adz);
+  const double bdztail = two_diff_tail(b.z, d.z, bdz);
+  const double cdztail = two_diff_tail(c.z, d.z, cdz);
+  if (adxtail == 0.0 && bdxtail == 0.0 && cdxtail == 0.0 && adytail == 0.0 && bdytail == 0.0 &&
+      cdytail == 0.0 && adztail == 0.0 && bdztail == 0.0 && cdztail == 0.0) {
+    return {fin.sign(), Stage::B};  // the differences were exact, so fin is the exact value
+  }
+
+  // Stage C: add the first-order effect of the tails.
+  errbound = bounds::kOrient3dC * permanent + bounds::kResultErrBound * std::fabs(det);
+  det += (adz * ((bdx * cdytail + cdy * bdxtail) - (bdy * cdxtail + cdx * bdytail)) +
+          adztail * (bdx * cdy - bdy * cdx)) +
+         (bdz * ((cdx * adytail + ady * cdxtail) - (cdy * adxtail + adx * cdytail)) +
+          bdztail * (cdx * ady - cdy * adx)) +
+         (cdz * ((adx * bdytail + bdy * adxtail) - (ady * bdxtail + bdx * adytail)) +
+          cdztail * (adx * bdy - ady * bdx));
+  if (det >= errbound || -det >= errbound) return {sign_of(det), Stage::C};
+
+  // Stage D: exact, from the raw coordinates.
+  return {detail::orient3d_raw(a, b, c, d).sign(), Stage::D};
+}
+
+}  // namespace
+
+StagedSign AdaptiveKernel::orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
+                                           const Point3& d) {
+  const double adx = a.x - d.x;
+  const double bdx = b.x - d.x;
+  const double cdx = c.x - d.x;
+  const double ady = a.y - d.y;
+  const double bdy = b.y - d.y;
+  const double cdy = c.y - d.y;
+  const double adz = a.z - d.z;
+  const double bdz = b.z - d.z;
+  const double cdz = c.z - d.z;
+
+  const double bdxcdy = bdx * cdy;
+  const double cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady;
+  const double adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy;
+  const double bdxady = bdx * ady;
+
+  const double det =
+      adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  const double errbound = bounds::kOrient3dA * permanent;
+  // dtlab's sign is the negation of Shewchuk's (see kernels.hpp).
+  if (det > errbound || -det > errbound) return {-sign_of(det), Stage::A};
+  const StagedSign s = orient3d_adapt(a, b, c, d, permanent);
+  return {-s.sign, s.stage};
+}
+
+StagedSign AdaptiveKernel::orient2d_staged(const Point3& a, const Point3& b, const Point3& c,
+                                           int drop) {
+  const int u = projection_u(drop);
+  const int v = projection_v(drop);
+  const double detleft = (coordinate(a, u) - coordinate(c, u)) * (coordinate(b, v) - coordinate(c, v));
+  const double detright =
+      (coordinate(a, v) - coordinate(c, v)) * (coordinate(b, u) - coordinate(c, u));
+  const double det = detleft - detright;
+  const double errbound = bounds::kOrient2dA * (std::fabs(detleft) + std::fabs(detright));
+  if (det > errbound || -det > errbound) return {sign_of(det), Stage::A};
+  return {detail::orient2d_raw(a, b, c, u, v).sign(), Stage::D};
+}
+
+}  // namespace dtlab::predicates
