@@ -5,9 +5,10 @@
 //
 // The vertex at infinity. Every hull face carries an infinite tetrahedron, so every face has two
 // sides and S22 is the S44 whose ring contains the infinite vertex. For orientation tests the
-// infinite vertex stands for the point "behind" a fixed interior point O (the centroid of the
-// first tetrahedron), in the sense of oriented projective geometry: orient(..., inf, ...) is
-// minus orient(..., O, ...). An infinite tetrahedron (a, b, c, inf) then is the unbounded cone
+// infinite vertex stands for the point "behind" a fixed interior point O, in the sense of
+// oriented projective geometry: orient(..., inf, ...) is minus orient(..., O, ...). O is the exact
+// centroid of the first tetrahedron, kept symbolic (a rounded centroid of a flat first
+// tetrahedron can land on its face plane): K::orient3d_centroid decides it exactly. An infinite tetrahedron (a, b, c, inf) then is the unbounded cone
 // from O beyond the hull face abc, so finite and infinite tetrahedra tile all of space, every
 // flip is checked geometrically, and the DAG partitions space as the paper's auxiliary
 // tetrahedron does. The insphere test of an infinite tetrahedron does not use O: a point
@@ -37,8 +38,7 @@ class IncrementalDelaunay {
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {
     const Point3 &pa = points_[a], &pb = points_[b], &pc = points_[c], &pd = points_[d];
-    origin_ = {(pa.x + pb.x + pc.x + pd.x) / 4, (pa.y + pb.y + pc.y + pd.y) / 4,
-               (pa.z + pb.z + pc.z + pd.z) / 4};
+    first_ = {pa, pb, pc, pd};
     int o = K::orient3d(pa, pb, pc, pd);
     if (o == 0) throw TriangulationError("the first tetrahedron is flat under this kernel");
     if (o < 0) std::swap(a, b);
@@ -74,9 +74,18 @@ class IncrementalDelaunay {
     return complete ? Outcome::Inserted : Outcome::Abandoned;
   }
 
-  // Live finite tetrahedra whose vertices are all below `vertex_limit`, and how many live finite
-  // tetrahedra were left out for touching a vertex at or above it (auxiliary vertices).
+  // Live finite tetrahedra whose vertices are all below `vertex_limit` (so not auxiliary). Each
+  // set of duplicate points is named by its lowest input index, whichever of them was inserted,
+  // so that the output does not depend on the insertion order.
   std::vector<Tetrahedron> finite_tetrahedra(VertexId vertex_limit) const {
+    std::vector<VertexId> representative;
+    if (!duplicates_.empty()) {
+      representative.resize(points_.size());
+      for (std::size_t i = 0; i < representative.size(); ++i) representative[i] = static_cast<VertexId>(i);
+      for (const auto& [duplicate, vertex] : duplicates_) {
+        representative[vertex] = std::min(representative[vertex], duplicate);
+      }
+    }
     std::vector<Tetrahedron> out;
     const std::size_t n = tets_.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -87,6 +96,9 @@ class IncrementalDelaunay {
         continue;
       }
       out.push_back(t.vertex);
+      if (!representative.empty()) {
+        for (auto& v : out.back()) v = representative[v];
+      }
     }
     return out;
   }
@@ -97,14 +109,19 @@ class IncrementalDelaunay {
  private:
   using Quad = std::array<VertexId, 4>;
 
-  const Point3& point(VertexId v) const { return v == kInfiniteVertex ? origin_ : points_[v]; }
+  // Only finite vertices are looked up: the infinite vertex never reaches a point lookup.
+  const Point3& point(VertexId v) const { return points_[v]; }
 
   int orient(const Quad& q) {
     ++predicate_calls_;
-    const int s = K::orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
-    const bool infinite = q[0] == kInfiniteVertex || q[1] == kInfiniteVertex ||
-                          q[2] == kInfiniteVertex || q[3] == kInfiniteVertex;
-    return infinite ? -s : s;
+    int inf = 3;
+    while (inf >= 0 && q[static_cast<std::size_t>(inf)] != kInfiniteVertex) --inf;
+    if (inf < 0) return K::orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
+    // orient(q) = -orient(q with inf -> O); move O to the last slot (a swap: one more sign).
+    Quad r = q;
+    std::swap(r[static_cast<std::size_t>(inf)], r[3]);
+    const int s = K::orient3d_centroid(point(r[0]), point(r[1]), point(r[2]), first_);
+    return inf == 3 ? -s : s;
   }
 
   // Orientation of tetrahedron t with its vertex at position i replaced by v.
@@ -211,7 +228,10 @@ class IncrementalDelaunay {
     } else if (zeros == 3) {
       const int m = static_cast<int>(std::find_if(o.begin(), o.end(), [](int s) { return s != 0; }) - o.begin());
       const VertexId v = tets_[t].vertex[static_cast<std::size_t>(m)];
-      if (v != kInfiniteVertex && points_[v] == points_[p]) return Outcome::Duplicate;
+      if (v != kInfiniteVertex && points_[v] == points_[p]) {
+        duplicates_.push_back({p, v});
+        return Outcome::Duplicate;
+      }
       return Outcome::Abandoned;  // inconsistent signs from an inexact kernel
     } else {
       return Outcome::Abandoned;
@@ -469,10 +489,11 @@ class IncrementalDelaunay {
   const std::vector<Point3>& points_;
   const TriangulateOptions& options_;
   TriangulationStats& stats_;
-  Point3 origin_{0, 0, 0};
+  predicates::Tetrahedron4 first_{};  // O is the centroid of these four points
   TetStore tets_;
   std::vector<TetId> roots_;
   std::uint64_t predicate_calls_ = 0;
+  std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)
 
   // Scratch buffers reused across insertions (no allocation per insertion once warm).
   std::vector<TetId> scratch_old_;

@@ -139,28 +139,30 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
   }
 
   // Exact power-of-two scaling into the adaptive kernel's valid range (signs are unchanged).
+  // Applied for every kernel when it is lossless, so that all kernels see the same numbers; the
+  // adaptive kernel refuses input that does not fit, the others take it as it is.
   std::vector<Point3> points = input;
-  if (options.kernel == KernelKind::Adaptive) {
-    double max_abs = 0.0;
-    double min_abs = 0.0;
-    for (const Point3& p : input) {
-      for (const double c : {p.x, p.y, p.z}) {
-        if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
-        const double m = std::fabs(c);
-        max_abs = std::max(max_abs, m);
-        if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
-      }
+  double max_abs = 0.0;
+  double min_abs = 0.0;
+  for (const Point3& p : input) {
+    for (const double c : {p.x, p.y, p.z}) {
+      if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
+      const double m = std::fabs(c);
+      max_abs = std::max(max_abs, m);
+      if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
     }
-    const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
-    if (!scaling.fits) {
-      char message[320];
-      std::snprintf(message, sizeof message,
-                    "coordinate magnitudes span %.3g .. %.3g, more than the adaptive kernel can "
-                    "decide exactly (ratio above 2^%d, see docs/predicates.md); use "
-                    "--predicates exact",
-                    min_abs, max_abs, predicates::kScaledMaxExponent - 1 - predicates::kRangeMinExponent);
-      throw TriangulationError(message);
-    }
+  }
+  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+  if (!scaling.fits && options.kernel == KernelKind::Adaptive) {
+    char message[320];
+    std::snprintf(message, sizeof message,
+                  "coordinate magnitudes span %.3g .. %.3g, more than the adaptive kernel can "
+                  "decide exactly (ratio above 2^%d, see docs/predicates.md); use "
+                  "--predicates exact",
+                  min_abs, max_abs, predicates::kScaledMaxExponent - 1 - predicates::kRangeMinExponent);
+    throw TriangulationError(message);
+  }
+  if (scaling.fits) {
     stats.scale_exponent = scaling.exponent;
     for (Point3& p : points) {
       p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),

@@ -98,6 +98,33 @@ StagedSign AdaptiveKernel::orient3d_staged(const Point3& a, const Point3& b, con
   return {-s.sign, s.stage};
 }
 
+StagedSign AdaptiveKernel::orient3d_centroid_staged(const Point3& a, const Point3& b,
+                                                    const Point3& c, const Tetrahedron4& v) {
+  // Stage A: the four float determinants (Shewchuk's sign) and their permanents. Each is off by
+  // at most kOrient3dA * permanent; the three additions add at most 3 eps (1 + eps)^3 times the
+  // sum of magnitudes, which the extra 6 eps covers with room for the rounding of the bound.
+  double sum = 0.0;
+  double permanents = 0.0;
+  for (const Point3& d : v) {
+    const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
+    const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
+    const double adz = a.z - d.z, bdz = b.z - d.z, cdz = c.z - d.z;
+    const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+    const double cdxady = cdx * ady, adxcdy = adx * cdy;
+    const double adxbdy = adx * bdy, bdxady = bdx * ady;
+    sum += adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    permanents += (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+                  (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+                  (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  }
+  const double errbound = (bounds::kOrient3dA + 6.0 * bounds::kEpsilon) * permanents;
+  if (sum > errbound || -sum > errbound) return {-sign_of(sum), Stage::A};
+  // Exact: the sum of the four exact orientations.
+  const Exp<192> first = add(detail::orient3d_raw(a, b, c, v[0]), detail::orient3d_raw(a, b, c, v[1]));
+  const Exp<192> second = add(detail::orient3d_raw(a, b, c, v[2]), detail::orient3d_raw(a, b, c, v[3]));
+  return {-add(first, second).sign(), Stage::D};
+}
+
 StagedSign AdaptiveKernel::orient2d_staged(const Point3& a, const Point3& b, const Point3& c,
                                            int drop) {
   const int u = projection_u(drop);

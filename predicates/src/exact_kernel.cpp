@@ -56,6 +56,19 @@ int ExactKernel::orient3d(const Point3& a, const Point3& b, const Point3& c, con
                       v[8] - v[2], v[9] - v[0], v[10] - v[1], v[11] - v[2]));
 }
 
+int ExactKernel::orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                                   const Tetrahedron4& v) {
+  const auto w = to_common_integers<21>({a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, v[0].x, v[0].y,
+                                         v[0].z, v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z,
+                                         v[3].x, v[3].y, v[3].z});
+  // det[b - a; c - a; 4 * centroid - 4 * a], all integers.
+  const mpz_class sx = w[9] + w[12] + w[15] + w[18] - 4 * w[0];
+  const mpz_class sy = w[10] + w[13] + w[16] + w[19] - 4 * w[1];
+  const mpz_class sz = w[11] + w[14] + w[17] + w[20] - 4 * w[2];
+  return sign_of(det3(w[3] - w[0], w[4] - w[1], w[5] - w[2], w[6] - w[0], w[7] - w[1], w[8] - w[2], sx,
+                      sy, sz));
+}
+
 int ExactKernel::insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                           const Point3& e) {
   const auto v = to_common_integers<15>(

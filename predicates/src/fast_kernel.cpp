@@ -16,6 +16,18 @@ int FastKernel::orient3d(const Point3& a, const Point3& b, const Point3& c, cons
   return -sign_of(det);  // dtlab's sign is the negation of Shewchuk's
 }
 
+int FastKernel::orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                                  const Tetrahedron4& v) {
+  double sum = 0.0;
+  for (const Point3& d : v) {
+    const double adx = a.x - d.x, ady = a.y - d.y, adz = a.z - d.z;
+    const double bdx = b.x - d.x, bdy = b.y - d.y, bdz = b.z - d.z;
+    const double cdx = c.x - d.x, cdy = c.y - d.y, cdz = c.z - d.z;
+    sum += adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+  }
+  return -sign_of(sum);
+}
+
 int FastKernel::insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                          const Point3& e) {
   const double adx = a.x - e.x, ady = a.y - e.y, adz = a.z - e.z;

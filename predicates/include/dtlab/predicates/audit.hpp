@@ -64,6 +64,19 @@ struct Audited {
       return s;
     }
   }
+  // Counted as an orient3d call.
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v) {
+    if constexpr (requires { K::orient3d_centroid_staged(a, b, c, v); }) {
+      const StagedSign s = K::orient3d_centroid_staged(a, b, c, v);
+      count(Predicate::Orient3d, static_cast<int>(s.stage));
+      return s.sign;
+    } else {
+      const int s = K::orient3d_centroid(a, b, c, v);
+      count(Predicate::Orient3d, -1);
+      compare(Predicate::Orient3d, s, ExactKernel::orient3d_centroid(a, b, c, v));
+      return s;
+    }
+  }
   static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
     if constexpr (requires { K::orient2d_staged(a, b, c, drop); }) {
       const StagedSign s = K::orient2d_staged(a, b, c, drop);

@@ -48,7 +48,7 @@ inline void split(double a, double& hi, double& lo) {
 // one fused operation; otherwise Veltkamp-Dekker splitting.
 inline void two_product(double a, double b, double& x, double& y) {
   x = a * b;
-#if defined(__FMA__)
+#if defined(__FMA__) && !defined(DTLAB_DEKKER_PRODUCT)
   y = std::fma(a, b, -x);
 #else
   double a_hi = 0.0;

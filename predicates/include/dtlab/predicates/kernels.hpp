@@ -16,6 +16,11 @@
 //                              projection that drops `drop`, with the full 3D squared length as
 //                              the lifting. d is strictly inside the 3D circle through a, b, c
 //                              iff its sign equals orient2d(a, b, c, drop) (which must be nonzero).
+//   orient3d_centroid(a, b, c, v) = orient3d(a, b, c, (v0 + v1 + v2 + v3) / 4), the centroid taken
+//                              exactly (orient3d is affine in its last point, so this is the sign
+//                              of the sum of the four orientations). The engine's symbolic
+//                              interior point.
+#include <array>
 #include <cstdint>
 
 #include "dtlab/predicates/point.hpp"
@@ -35,8 +40,11 @@ struct StagedSign {
 
 // Plain double arithmetic on coordinate differences, no filter. Wrong signs are possible and are
 // what dtlab measures.
+using Tetrahedron4 = std::array<Point3, 4>;
+
 struct FastKernel {
   static constexpr const char* kName = "fast";
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v);
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                       const Point3& e);
@@ -56,6 +64,11 @@ struct AdaptiveKernel {
   static StagedSign orient2d_staged(const Point3& a, const Point3& b, const Point3& c, int drop);
   static StagedSign incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
                                            const Point3& d, int drop);
+  static StagedSign orient3d_centroid_staged(const Point3& a, const Point3& b, const Point3& c,
+                                             const Tetrahedron4& v);
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v) {
+    return orient3d_centroid_staged(a, b, c, v).sign;
+  }
 
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
     return orient3d_staged(a, b, c, d).sign;
@@ -77,6 +90,7 @@ struct AdaptiveKernel {
 // Exact for every finite double input, whatever its magnitude.
 struct ExactKernel {
   static constexpr const char* kName = "exact";
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v);
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                       const Point3& e);

@@ -1,0 +1,93 @@
+#pragma once
+// RapidCheck generators of point sets for every family, built from small integers mapped to
+// doubles so that degenerate cases (ties, coplanar and cospherical subsets, duplicates) are
+// frequent and shrink toward small counterexamples.
+#include <rapidcheck.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "dtlab/predicates/point.hpp"
+
+namespace dtlab::property {
+
+using predicates::Point3;
+
+struct PointSetCase {
+  std::string family;
+  std::vector<Point3> points;
+};
+
+// Full precision, one point per line in .xyz form, so a counterexample can be pasted into a
+// regression file as it is.
+inline void showValue(const PointSetCase& c, std::ostream& os) {
+  os << c.family << " (" << c.points.size() << " points):\n";
+  char line[96];
+  for (const auto& p : c.points) {
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", p.x, p.y, p.z);
+    os << line;
+  }
+}
+
+inline rc::Gen<Point3> small_integer_point(int range) {
+  return rc::gen::map(rc::gen::tuple(rc::gen::inRange(0, range), rc::gen::inRange(0, range),
+                                     rc::gen::inRange(0, range)),
+                      [](const std::tuple<int, int, int>& t) {
+                        return Point3{static_cast<double>(std::get<0>(t)), static_cast<double>(std::get<1>(t)),
+                                      static_cast<double>(std::get<2>(t))};
+                      });
+}
+
+// Maps integer points into a family's shape: exact transformations keep the degeneracies.
+inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> pts, int salt) {
+  for (auto& p : pts) {
+    if (family == "uniform") {
+      p = {p.x + 0.001 * std::sin(1.0 + p.y + salt), p.y + 0.001 * std::cos(p.z * 3 + salt), p.z + 0.0007 * p.x};
+    } else if (family == "planes") {
+      if (static_cast<int>(p.x) % 2 == 0) p.z = 2.0;  // half on the plane z = 2
+    } else if (family == "sphere") {
+      // Integer points scaled onto the unit sphere (rounded): nearly cospherical.
+      const double r = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+      if (r > 0) p = {p.x / r, p.y / r, p.z / r};
+    } else if (family == "lattice") {
+      p = {p.x + 0x1p30, p.y + 0x1p30, p.z + 0x1p30};
+    } else if (family == "tiny") {
+      p = {p.x * 1e-150, p.y * 1e-150, p.z * 1e-150};
+    } else if (family == "huge") {
+      p = {p.x * 1e150, p.y * 1e150, p.z * 1e150};
+    } else if (family == "near-duplicates") {
+      p.x += 1.0;  // away from 0, so that the neighbour 1 ulp up is not a denormal
+      if (static_cast<int>(p.y) % 3 == 0) p.x = std::nextafter(p.x, 100.0);
+    }
+    // "grid" and "duplicates" keep the integers (ties and repeats are already frequent).
+  }
+  return pts;
+}
+
+inline const std::vector<std::string>& families() {
+  static const std::vector<std::string> f{"uniform", "grid", "planes", "sphere", "lattice",
+                                          "tiny", "huge", "duplicates", "near-duplicates"};
+  return f;
+}
+
+inline rc::Gen<PointSetCase> point_set_case() {
+  return rc::gen::mapcat(rc::gen::elementOf(families()), [](const std::string& family) {
+    const int range = family == "grid" || family == "duplicates" ? 4 : 7;
+    return rc::gen::map(
+        rc::gen::pair(rc::gen::container<std::vector<Point3>>(small_integer_point(range)),
+                      rc::gen::inRange(0, 100)),
+        [family](const std::pair<std::vector<Point3>, int>& v) {
+          std::vector<Point3> pts = v.first;
+          if (family == "duplicates") {
+            const std::size_t n = pts.size();
+            for (std::size_t i = 0; i < n; i += 2) pts.push_back(pts[i]);
+          }
+          return PointSetCase{family, shape(family, pts, v.second)};
+        });
+  });
+}
+
+}  // namespace dtlab::property

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Every bad input gets a clear message and exit code 2, never a crash (exit >= 128) or a hang.
+set -u
+dtlab="$1"
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+expect() {  # expect CODE MESSAGE-FRAGMENT -- args...
+  local code="$1" fragment="$2"
+  shift 3
+  local out
+  out=$(timeout 60 "$dtlab" "$@" 2>&1 >/dev/null)
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qF -- "$fragment" <<<"$out"; then
+    echo "FAIL: dtlab $* -> exit $got, stderr: $out (wanted $code and '$fragment')"
+    failures=$((failures + 1))
+  fi
+}
+printf '1 2 3\n4 nan 6\n' >"$dir/nan.xyz"
+printf '0 0 0\n1 0 0\n0 1 0\n' >"$dir/three.xyz"
+printf 'ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\nend_header\nabc' >"$dir/trunc.ply"
+expect 2 "cannot open" -- info "$dir/missing.xyz"
+expect 2 "nan.xyz:2" -- info "$dir/nan.xyz"
+expect 2 "truncated" -- triangulate "$dir/trunc.ply"
+expect 2 "unknown generator" -- info "nosuch:100"
+expect 2 "out of range" -- triangulate "uniform:0"
+expect 2 "dimension" -- triangulate "$dir/three.xyz" -o "$dir/out.ele"
+expect 2 "coplanar" -- triangulate "coplanar:1000" -o "$dir/out.ele"
+expect 2 "collinear" -- triangulate "collinear:1000"
+printf '0 0 0\n1 0 0\n0 1 0\n0 0 1\n1e-300 0.5 0.5\n' >"$dir/wide.xyz"
+expect 2 "more than the adaptive kernel" -- triangulate "$dir/wide.xyz" -o "$dir/out.ele"
+expect 2 "must end in" -- triangulate "uniform:100" -o "$dir/out.txt"
+expect 2 "" -- triangulate "uniform:100" --predicates nosuch
+if ls "$dir"/out.* >/dev/null 2>&1; then echo "FAIL: an output file was left behind"; failures=$((failures + 1)); fi
+# Exact kernel accepts the wide range.
+timeout 60 "$dtlab" triangulate "$dir/wide.xyz" --predicates exact --validate >/dev/null || { echo "FAIL: exact on wide range"; failures=$((failures + 1)); }
+echo "cli_bad_input: $failures failures"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,190 @@
+// Readers and writers: bit-exact round trips, every format's variants, every bad-input case.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "dtlab/generators/generators.hpp"
+#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/io/point_readers.hpp"
+
+namespace dtlab::test {
+namespace {
+
+using io::InputError;
+using predicates::Point3;
+namespace fs = std::filesystem;
+
+class IoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dtlab_io_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& contents) const {
+    std::ofstream out(path(name), std::ios::binary);
+    out << contents;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+std::vector<Point3> awkward_points() {
+  std::vector<Point3> p = generators::generate("uniform", 200, 7).points;
+  p.push_back({0.1, -0.0, 1e-300});
+  p.push_back({1e300, -1e-310, 0.30000000000000004});
+  p.push_back({5e-324, std::nextafter(1.0, 2.0), -123456789.125});
+  p.push_back(p[3]);  // a duplicate
+  return p;
+}
+
+void expect_bitwise_equal(const std::vector<Point3>& a, const std::vector<Point3>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a[i].x), std::bit_cast<std::uint64_t>(b[i].x)) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a[i].y), std::bit_cast<std::uint64_t>(b[i].y)) << i;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a[i].z), std::bit_cast<std::uint64_t>(b[i].z)) << i;
+  }
+}
+
+TEST_F(IoTest, XyzRoundTripIsBitExact) {
+  const auto p = awkward_points();
+  io::write_xyz(path("a.xyz"), p);
+  expect_bitwise_equal(p, io::read_points(path("a.xyz")));
+}
+
+TEST_F(IoTest, NodeRoundTripIsBitExact) {
+  const auto p = awkward_points();
+  io::write_node(path("a.node"), p);
+  expect_bitwise_equal(p, io::read_points(path("a.node")));
+  EXPECT_EQ(io::node_index_base(path("a.node")), 0);
+}
+
+TEST_F(IoTest, EleRoundTrip) {
+  const std::vector<io::Tetrahedron> tets{{0, 1, 2, 3}, {4, 3, 2, 1}};
+  io::write_ele(path("a.ele"), tets);
+  EXPECT_EQ(io::read_ele(path("a.ele"), 5, 0), tets);
+  EXPECT_THROW(io::read_ele(path("a.ele"), 4, 0), InputError);  // id 4 out of range
+}
+
+TEST_F(IoTest, VtuHasPointsCellsAndCellData) {
+  const std::vector<Point3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  io::write_vtu(path("a.vtu"), p, {{0, 1, 2, 3}}, {{"non_delaunay", {1}}});
+  const std::string text = io::read_file_bytes(path("a.vtu"));
+  EXPECT_NE(text.find("NumberOfPoints=\"4\" NumberOfCells=\"1\""), std::string::npos);
+  EXPECT_NE(text.find("Name=\"non_delaunay\""), std::string::npos);
+  EXPECT_NE(text.find("</VTKFile>"), std::string::npos);
+}
+
+std::string ply_header(const std::string& format, std::size_t n, const std::string& type) {
+  return "ply\nformat " + format + " 1.0\ncomment test\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "element vertex " + std::to_string(n) + "\nproperty " + type + " x\nproperty " + type +
+         " y\nproperty uchar red\nproperty " + type + " z\nend_header\n";
+}
+
+template <class T>
+std::string binary_body(const std::vector<Point3>& p, bool big_endian) {
+  std::string out;
+  auto put = [&](const void* data, std::size_t size) {
+    std::string bytes(static_cast<const char*>(data), size);
+    if (big_endian != (std::endian::native == std::endian::big)) std::reverse(bytes.begin(), bytes.end());
+    out += bytes;
+  };
+  const unsigned char count = 3;
+  const std::int32_t index = 0;
+  out.push_back(static_cast<char>(count));
+  for (int i = 0; i < 3; ++i) put(&index, 4);
+  for (const Point3& q : p) {
+    const T x = static_cast<T>(q.x), y = static_cast<T>(q.y), z = static_cast<T>(q.z);
+    put(&x, sizeof(T));
+    put(&y, sizeof(T));
+    out.push_back('\x07');
+    put(&z, sizeof(T));
+  }
+  return out;
+}
+
+TEST_F(IoTest, PlyBinaryLittleAndBigEndianDoubleAndFloat) {
+  const auto p = generators::generate("uniform", 50, 3).points;
+  for (const bool big : {false, true}) {
+    const std::string fmt = big ? "binary_big_endian" : "binary_little_endian";
+    write("d.ply", ply_header(fmt, p.size(), "double") + binary_body<double>(p, big));
+    expect_bitwise_equal(p, io::read_points(path("d.ply")));
+    write("f.ply", ply_header(fmt, p.size(), "float") + binary_body<float>(p, big));
+    const auto f = io::read_points(path("f.ply"));
+    ASSERT_EQ(f.size(), p.size());
+    EXPECT_EQ(f[5].x, static_cast<double>(static_cast<float>(p[5].x)));
+  }
+}
+
+TEST_F(IoTest, PlyAscii) {
+  write("a.ply", ply_header("ascii", 2, "float") + "3 0 1 2\n1.5 2.5 9 3.5\n-1 -2 0 -3\n");
+  const auto p = io::read_points(path("a.ply"));
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].x, 1.5);
+  EXPECT_EQ(p[0].z, 3.5);
+  EXPECT_EQ(p[1].y, -2);
+}
+
+TEST_F(IoTest, OffAndXyzComments) {
+  write("a.off", "OFF\n# comment\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(io::read_points(path("a.off")).size(), 3u);
+  write("b.xyz", "# header\n\n1 2 3\n4 5 6 # trailing\n  7 8 9 0.1 0.2 0.3\n");
+  const auto p = io::read_points(path("b.xyz"));
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[2].z, 9);
+}
+
+void expect_error(const std::string& file, const std::string& fragment) {
+  try {
+    io::read_points(file);
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(IoTest, BadInputGetsClearErrors) {
+  expect_error(path("missing.xyz"), "cannot open");
+  expect_error(write("nan.xyz", "1 2 3\n4 nan 6\n"), "nan.xyz:2");
+  expect_error(write("inf.xyz", "1 2 inf\n"), "not finite");
+  expect_error(write("short.xyz", "1 2 3\n4 5\n"), "short.xyz:2: expected three coordinates");
+  expect_error(write("word.xyz", "1 2 x3\n"), "expected a number");
+  expect_error(write("big.xyz", "1 2 1e999\n"), "out of the range");
+  expect_error(write("t.ply", ply_header("binary_little_endian", 10, "double") + "\x03"), "truncated");
+  expect_error(write("ta.ply", ply_header("ascii", 3, "double") + "3 0 1 2\n1 2 3 4\n"), "truncated");
+  expect_error(write("nomagic.ply", "plx\n"), "not a PLY file");
+  expect_error(write("noend.ply", "ply\nformat ascii 1.0\n"), "end_header");
+  expect_error(write("novert.ply", "ply\nformat ascii 1.0\nelement face 0\nend_header\n"), "no vertex element");
+  expect_error(write("n.ply", ply_header("ascii", 1, "double") + "3 0 1 2\nnan 1 1 1\n"), "non-finite");
+  expect_error(write("a.off", "OFF\n5 0 0\n0 0 0\n"), "truncated");
+  expect_error(write("b.node", "3 3 0 0\n0 0 0 0\n2 1 1 1\n"), "out of sequence");
+  expect_error(write("c.node", "2 2 0 0\n"), "dimension must be 3");
+  expect_error(write("x.obj", "v 1 2 3\n"), "unknown point format");
+  expect_error(write("bad.xyz.xz", "not xz data"), "xz");
+}
+
+TEST_F(IoTest, XzCompressedInputIsRead) {
+  const auto p = awkward_points();
+  io::write_xyz(path("c.xyz"), p);
+  const std::string cmd = "xz -k -f '" + path("c.xyz") + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  expect_bitwise_equal(p, io::read_points(path("c.xyz.xz")));
+}
+
+TEST_F(IoTest, FailedWriteLeavesNoFile) {
+  const std::string target = path("no_such_dir/out.ele");
+  EXPECT_ANY_THROW(io::write_ele(target, {{0, 1, 2, 3}}));
+  EXPECT_FALSE(fs::exists(target));
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+}
+
+}  // namespace
+}  // namespace dtlab::test
