@@ -1,8 +1,10 @@
-// Adaptive vs exact insphere and orient3d on near-cospherical / near-coplanar inputs far from
-// the origin. Exit 0 when every sign agrees, 1 otherwise. Built twice (tests/CMakeLists.txt):
-// against the real predicates target it must pass; against a copy compiled with floating point
-// contraction it must fail, which proves the check notices a contracted build.
-#include <cmath>
+// Adaptive vs exact on inputs whose signs only the exact stages can decide: integer points with
+// 30-bit coordinates that are exactly (or 1 unit off) coplanar, and 20-bit integer points that
+// are exactly (or 1 unit off) cospherical. Their differences are exact but their products are not,
+// so the answer rests on Two-Product being error-free. Exit 0 when every sign agrees, 1 otherwise.
+// Built twice (tests/CMakeLists.txt): against the real predicates target it must pass; against a
+// copy compiled with unsafe floating point (contraction and -ffast-math) it must fail, which
+// proves that this check notices such a build.
 #include <cstdio>
 #include <random>
 
@@ -11,33 +13,39 @@
 using dtlab::predicates::AdaptiveKernel;
 using dtlab::predicates::ExactKernel;
 using dtlab::predicates::Point3;
+using dtlab::predicates::Stage;
 
 int main() {
   std::mt19937_64 rng(7);
-  auto unit = [&] { return std::ldexp(static_cast<double>(rng() >> 11), -53); };
-  auto on_sphere = [&](Point3 c, double r) {
-    const double theta = 2.0 * M_PI * unit();
-    const double z = 2.0 * unit() - 1.0;
-    const double s = std::sqrt(1.0 - z * z);
-    return Point3{c.x + r * s * std::cos(theta), c.y + r * s * std::sin(theta), c.z + r * z};
+  auto integer = [&](int bits) {
+    return static_cast<double>(static_cast<std::int64_t>(rng() >> (64 - bits)) - (std::int64_t{1} << (bits - 1)));
   };
   long wrong = 0;
-  long stage_d = 0;
-  const long trials = 200000;
+  long exact_stages = 0;
+  const long trials = 20000;
   for (long i = 0; i < trials; ++i) {
-    const double offset = std::ldexp(1.0, static_cast<int>(i % 24));
-    const Point3 c{offset * (0.5 + unit()), offset * unit(), -offset * unit()};
-    const double r = 0.5 + unit();
-    const Point3 a = on_sphere(c, r), b = on_sphere(c, r), d = on_sphere(c, r), e = on_sphere(c, r);
-    const Point3 f = on_sphere(c, r);
-    const auto s = AdaptiveKernel::insphere_staged(a, b, d, e, f);
-    if (s.stage == dtlab::predicates::Stage::D) ++stage_d;
-    if (s.sign != ExactKernel::insphere(a, b, d, e, f)) ++wrong;
-    const Point3 q{a.x + 0.5 * (b.x - a.x) + 0.25 * (d.x - a.x), a.y + 0.5 * (b.y - a.y) + 0.25 * (d.y - a.y),
-                   a.z + 0.5 * (b.z - a.z) + 0.25 * (d.z - a.z)};
-    if (AdaptiveKernel::orient3d(a, b, d, q) != ExactKernel::orient3d(a, b, d, q)) ++wrong;
+    // Coplanar: d = b + c - a, nudged by -1, 0 or +1 in z.
+    const Point3 a{integer(30), integer(30), integer(30)};
+    const Point3 b{integer(30), integer(30), integer(30)};
+    const Point3 c{integer(30), integer(30), integer(30)};
+    const Point3 d{b.x + c.x - a.x, b.y + c.y - a.y, b.z + c.z - a.z + static_cast<double>(i % 3 - 1)};
+    const auto o = AdaptiveKernel::orient3d_staged(a, b, c, d);
+    if (o.stage != Stage::A) ++exact_stages;
+    if (o.sign != ExactKernel::orient3d(a, b, c, d)) ++wrong;
+
+    // Cospherical: centre + coordinate permutations and sign changes of one vector.
+    const Point3 m{integer(22), integer(22), integer(22)};
+    const double x = integer(20), y = integer(20), z = integer(20);
+    const Point3 p0{m.x + x, m.y + y, m.z + z};
+    const Point3 p1{m.x + y, m.y + z, m.z + x};
+    const Point3 p2{m.x + z, m.y + x, m.z + y};
+    const Point3 p3{m.x - x, m.y + y, m.z + z};
+    const Point3 p4{m.x + x, m.y - y, m.z + z + static_cast<double>(i % 3 - 1)};
+    const auto s = AdaptiveKernel::insphere_staged(p0, p1, p2, p3, p4);
+    if (s.stage != Stage::A) ++exact_stages;
+    if (s.sign != ExactKernel::insphere(p0, p1, p2, p3, p4)) ++wrong;
   }
-  std::printf("%ld of %ld near-degenerate signs differ from exact (%ld insphere calls reached stage D)\n",
-              wrong, 2 * trials, stage_d);
+  std::printf("%ld of %ld signs differ from exact (%ld settled after stage A)\n", wrong, 2 * trials,
+              exact_stages);
   return wrong == 0 ? 0 : 1;
 }
