@@ -71,12 +71,15 @@ int main(int argc, char** argv) {
   std::printf("%-34s %10.3f %12zu\n", "dtlab sequential (adaptive, DAG)", median(ours), our_tets);
   std::printf("%-34s %10.3f %12zu\n", "CGAL Delaunay_triangulation_3", median(theirs), their_tets);
   std::printf("ratio dtlab / CGAL: %.2f\n", median(ours) / median(theirs));
-  std::printf("dtlab phases (last run): location %.3f, subdivision %.3f, legalization %.3f, other %.3f s; "
-              "flips S23 %llu S32 %llu S22 %llu S44 %llu; DAG nodes %llu; peak RSS %.0f MiB\n",
-              last.seconds.location, last.seconds.subdivision, last.seconds.legalization,
-              last.seconds.other, static_cast<unsigned long long>(last.flips.s23),
-              static_cast<unsigned long long>(last.flips.s32), static_cast<unsigned long long>(last.flips.s22),
-              static_cast<unsigned long long>(last.flips.s44), static_cast<unsigned long long>(last.dag_nodes),
-              static_cast<double>(last.peak_rss_bytes) / 1048576.0);
+  std::printf(
+      "dtlab phases (last run): location %.3f, subdivision %.3f, legalization %.3f, other %.3f s; "
+      "flips S23 %llu S32 %llu S22 %llu S44 %llu; DAG nodes %llu; peak RSS %.0f MiB\n",
+      last.seconds.location, last.seconds.subdivision, last.seconds.legalization,
+      last.seconds.other, static_cast<unsigned long long>(last.flips.s23),
+      static_cast<unsigned long long>(last.flips.s32),
+      static_cast<unsigned long long>(last.flips.s22),
+      static_cast<unsigned long long>(last.flips.s44),
+      static_cast<unsigned long long>(last.dag_nodes),
+      static_cast<double>(last.peak_rss_bytes) / 1048576.0);
   return 0;
 }

@@ -26,7 +26,8 @@ std::vector<Point3> inputs(bool near_degenerate) {
       const double theta = 2 * M_PI * unit();
       const double z = 2 * unit() - 1;
       const double s = std::sqrt(1 - z * z);
-      p.push_back({0.5 + 0.5 * s * std::cos(theta), 0.5 + 0.5 * s * std::sin(theta), 0.5 + 0.5 * z});
+      p.push_back(
+          {0.5 + 0.5 * s * std::cos(theta), 0.5 + 0.5 * s * std::sin(theta), 0.5 + 0.5 * z});
     }
   }
   return p;

@@ -17,7 +17,8 @@ namespace dtlab::cli {
 namespace {
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 void write_points(const std::string& path, const std::vector<predicates::Point3>& points) {
@@ -32,7 +33,8 @@ void write_points(const std::string& path, const std::vector<predicates::Point3>
 
 }  // namespace
 
-int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed, const std::string& output) {
+int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed,
+                 const std::string& output) {
   const generators::GeneratedPoints g = generators::generate(family, n, seed);
   if (!g.note.empty()) std::fprintf(stderr, "dtlab: %s\n", g.note.c_str());
   write_points(output, g.points);
@@ -54,15 +56,16 @@ int run_info(const std::string& input, std::uint64_t seed) {
   std::printf("collinear:           %s\n", info.dimension <= 1 ? "yes" : "no");
   std::printf("magnitude range:     %.6g .. %.6g (smallest nonzero |coordinate| .. largest)\n",
               info.min_abs_nonzero, info.max_abs);
-  std::printf("adaptive range:      %s\n",
-              info.adaptive_range_ok ? "ok (exact after power-of-two scaling)"
-                                     : "too wide: use --predicates exact");
+  std::printf("adaptive range:      %s\n", info.adaptive_range_ok
+                                               ? "ok (exact after power-of-two scaling)"
+                                               : "too wide: use --predicates exact");
   return 0;
 }
 
 int run_triangulate(const TriangulateArgs& args) {
   if (args.method != "sequential") {
-    throw std::invalid_argument("--method " + args.method + " is not available yet (only sequential)");
+    throw std::invalid_argument("--method " + args.method +
+                                " is not available yet (only sequential)");
   }
   if (args.threads != 1) throw std::invalid_argument("the sequential method runs on one thread");
   if (!args.output.empty() && !ends_with(args.output, ".ele") && !ends_with(args.output, ".vtu")) {
@@ -106,21 +109,23 @@ int run_triangulate(const TriangulateArgs& args) {
       out << json << "\n";
     }
     const auto& s = result.stats;
-    std::printf("triangulated %llu points (%llu inserted, %llu duplicates, %llu abandoned) into "
-                "%llu tetrahedra in %.3f s [%s, %s, %s, seed %llu]\n",
-                static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.inserted),
-                static_cast<unsigned long long>(s.duplicates),
-                static_cast<unsigned long long>(s.abandoned_insertions),
-                static_cast<unsigned long long>(s.tetrahedra), s.seconds.total,
-                engine::to_string(args.options.kernel), engine::to_string(args.options.bounding),
-                args.method.c_str(), static_cast<unsigned long long>(args.options.seed));
+    std::printf(
+        "triangulated %llu points (%llu inserted, %llu duplicates, %llu abandoned) into "
+        "%llu tetrahedra in %.3f s [%s, %s, %s, seed %llu]\n",
+        static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.inserted),
+        static_cast<unsigned long long>(s.duplicates),
+        static_cast<unsigned long long>(s.abandoned_insertions),
+        static_cast<unsigned long long>(s.tetrahedra), s.seconds.total,
+        engine::to_string(args.options.kernel), engine::to_string(args.options.bounding),
+        args.method.c_str(), static_cast<unsigned long long>(args.options.seed));
     std::printf("  time: location %.3f s, subdivision %.3f s, legalization %.3f s, other %.3f s\n",
                 s.seconds.location, s.seconds.subdivision, s.seconds.legalization, s.seconds.other);
-    std::printf("  flips: S23 %llu, S32 %llu, S22 %llu, S44 %llu; DAG nodes %llu; peak RSS %.1f MiB\n",
-                static_cast<unsigned long long>(s.flips.s23), static_cast<unsigned long long>(s.flips.s32),
-                static_cast<unsigned long long>(s.flips.s22), static_cast<unsigned long long>(s.flips.s44),
-                static_cast<unsigned long long>(s.dag_nodes),
-                static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0));
+    std::printf(
+        "  flips: S23 %llu, S32 %llu, S22 %llu, S44 %llu; DAG nodes %llu; peak RSS %.1f MiB\n",
+        static_cast<unsigned long long>(s.flips.s23), static_cast<unsigned long long>(s.flips.s32),
+        static_cast<unsigned long long>(s.flips.s22), static_cast<unsigned long long>(s.flips.s44),
+        static_cast<unsigned long long>(s.dag_nodes),
+        static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0));
     if (s.hull_tetrahedra_lost >= 0) {
       std::printf("  aux-tet: %lld tetrahedra of the exact convex hull triangulation lost\n",
                   static_cast<long long>(s.hull_tetrahedra_lost));

@@ -18,7 +18,8 @@ struct TriangulateArgs {
   engine::TriangulateOptions options;
 };
 
-int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed, const std::string& output);
+int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed,
+                 const std::string& output);
 int run_info(const std::string& input, std::uint64_t seed);
 int run_triangulate(const TriangulateArgs& args);
 int run_validate(const std::string& points, const std::string& mesh);

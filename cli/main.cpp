@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
       ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
   tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed");
-  tri->add_option("-o,--output", targs.output, "mesh output (.ele writes .node beside it, or .vtu)");
+  tri->add_option("-o,--output", targs.output,
+                  "mesh output (.ele writes .node beside it, or .vtu)");
   tri->add_option("--stats", targs.stats, "write stats JSON to FILE, or - for stdout");
   tri->add_flag("--validate", targs.validate, "check the result with the exact validator");
   tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
@@ -60,8 +61,8 @@ int main(int argc, char** argv) {
   validate->add_option("MESH", mesh_path, "the tetrahedra (.ele)")->required();
 
   KernelKind audit_kernel = KernelKind::Adaptive;
-  auto* audit = app.add_subcommand("predicates-audit",
-                                   "predicate calls per stage while triangulating INPUT");
+  auto* audit =
+      app.add_subcommand("predicates-audit", "predicate calls per stage while triangulating INPUT");
   audit->add_option("INPUT", input, "point file or generator spec")->required();
   audit->add_option("--seed", seed, "seed");
   audit->add_option("--predicates", audit_kernel, "fast | adaptive | exact")

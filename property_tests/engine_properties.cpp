@@ -25,7 +25,8 @@ struct Configuration {
 };
 
 std::string name(const Configuration& c) {
-  return std::string(engine::to_string(c.kernel)) + "/" + c.method + "/" + std::to_string(c.threads);
+  return std::string(engine::to_string(c.kernel)) + "/" + c.method + "/" +
+         std::to_string(c.threads);
 }
 
 const std::vector<Configuration>& configurations() {
@@ -69,7 +70,8 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
     ++row.second;
     try {
       const auto result = engine::triangulate(c.points, options);
-      RC_ASSERT(result.stats.inserted + result.stats.duplicates + result.stats.abandoned_insertions ==
+      RC_ASSERT(result.stats.inserted + result.stats.duplicates +
+                    result.stats.abandoned_insertions ==
                 result.stats.points);
       if (!engine::validate(c.points, result.tetrahedra).valid()) ++row.first;
     } catch (const engine::TriangulationError&) {
@@ -114,14 +116,18 @@ RC_GTEST_PROP(Invariance, ExactTranslationAndScaling, ()) {
   // Integer families, for which integer shifts are exact; the corners of a tetrahedron make sure
   // a tetrahedralization exists without discarding cases.
   PointSetCase c = *point_set_case();
-  RC_PRE(c.family == "grid" || c.family == "planes" || c.family == "duplicates" || c.family == "lattice");
-  for (const Point3& corner : {Point3{-1, -1, -1}, Point3{9, -1, -1}, Point3{-1, 9, -1}, Point3{-1, -1, 9}}) {
+  RC_PRE(c.family == "grid" || c.family == "planes" || c.family == "duplicates" ||
+         c.family == "lattice");
+  for (const Point3& corner :
+       {Point3{-1, -1, -1}, Point3{9, -1, -1}, Point3{-1, 9, -1}, Point3{-1, -1, 9}}) {
     c.points.push_back(corner);
   }
   const int scale = *rc::gen::inRange(-40, 40);
   const double shift = static_cast<double>(*rc::gen::inRange(-1000, 1000));
   auto moved = c.points;
-  for (auto& p : moved) p = {std::ldexp(p.x + shift, scale), std::ldexp(p.y - shift, scale), std::ldexp(p.z + 2 * shift, scale)};
+  for (auto& p : moved)
+    p = {std::ldexp(p.x + shift, scale), std::ldexp(p.y - shift, scale),
+         std::ldexp(p.z + 2 * shift, scale)};
   RC_ASSERT(canonical(engine::triangulate(c.points, {}).tetrahedra) ==
             canonical(engine::triangulate(moved, {}).tetrahedra));
 }

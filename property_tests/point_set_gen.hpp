@@ -36,7 +36,8 @@ inline rc::Gen<Point3> small_integer_point(int range) {
   return rc::gen::map(rc::gen::tuple(rc::gen::inRange(0, range), rc::gen::inRange(0, range),
                                      rc::gen::inRange(0, range)),
                       [](const std::tuple<int, int, int>& t) {
-                        return Point3{static_cast<double>(std::get<0>(t)), static_cast<double>(std::get<1>(t)),
+                        return Point3{static_cast<double>(std::get<0>(t)),
+                                      static_cast<double>(std::get<1>(t)),
                                       static_cast<double>(std::get<2>(t))};
                       });
 }
@@ -45,7 +46,8 @@ inline rc::Gen<Point3> small_integer_point(int range) {
 inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> pts, int salt) {
   for (auto& p : pts) {
     if (family == "uniform") {
-      p = {p.x + 0.001 * std::sin(1.0 + p.y + salt), p.y + 0.001 * std::cos(p.z * 3 + salt), p.z + 0.0007 * p.x};
+      p = {p.x + 0.001 * std::sin(1.0 + p.y + salt), p.y + 0.001 * std::cos(p.z * 3 + salt),
+           p.z + 0.0007 * p.x};
     } else if (family == "planes") {
       if (static_cast<int>(p.x) % 2 == 0) p.z = 2.0;  // half on the plane z = 2
     } else if (family == "sphere") {
@@ -68,8 +70,9 @@ inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> 
 }
 
 inline const std::vector<std::string>& families() {
-  static const std::vector<std::string> f{"uniform", "grid", "planes", "sphere", "lattice",
-                                          "tiny", "huge", "duplicates", "near-duplicates"};
+  static const std::vector<std::string> f{"uniform", "grid",       "planes",
+                                          "sphere",  "lattice",    "tiny",
+                                          "huge",    "duplicates", "near-duplicates"};
   return f;
 }
 

@@ -26,7 +26,8 @@ TEST(Regressions, AllKeptCounterexamplesValidate) {
       engine::TriangulateOptions options;
       options.kernel = kernel;
       const auto report = engine::validate(points, engine::triangulate(points, options).tetrahedra);
-      EXPECT_TRUE(report.valid()) << entry.path() << " " << engine::to_string(kernel) << report.json();
+      EXPECT_TRUE(report.valid()) << entry.path() << " " << engine::to_string(kernel)
+                                  << report.json();
     }
     engine::TriangulateOptions fast;
     fast.kernel = engine::KernelKind::Fast;
@@ -51,11 +52,12 @@ TEST(Regressions, AllKeptCounterexamplesValidate) {
     const auto points = generators::generate(family, n, seed).points;
     engine::TriangulateOptions options;
     options.seed = seed;
-    options.kernel = kernel == "fast" ? engine::KernelKind::Fast
+    options.kernel = kernel == "fast"    ? engine::KernelKind::Fast
                      : kernel == "exact" ? engine::KernelKind::Exact
                                          : engine::KernelKind::Adaptive;
     const auto result = engine::triangulate(points, options);
-    EXPECT_EQ(result.stats.inserted + result.stats.duplicates + result.stats.abandoned_insertions, points.size());
+    EXPECT_EQ(result.stats.inserted + result.stats.duplicates + result.stats.abandoned_insertions,
+              points.size());
     if (options.kernel != engine::KernelKind::Fast) {
       EXPECT_TRUE(engine::validate(points, result.tetrahedra).valid()) << line;
     }

@@ -38,7 +38,8 @@ std::vector<io::Tetrahedron> cgal_delaunay(const std::vector<Point3>& pts) {
   Delaunay dt(input.begin(), input.end());
   std::vector<io::Tetrahedron> out;
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    out.push_back({c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
+    out.push_back(
+        {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
   }
   return out;
 }
@@ -63,8 +64,8 @@ TEST(CgalOracle, GeneralPositionIdenticalTetrahedra) {
 }
 
 TEST(CgalOracle, DegenerateInputsValidateAndMatchCountAndVolume) {
-  for (const std::string family : {"grid", "sphere", "cospherical", "planes", "duplicates",
-                                   "near-duplicates", "lattice"}) {
+  for (const std::string family :
+       {"grid", "sphere", "cospherical", "planes", "duplicates", "near-duplicates", "lattice"}) {
     const auto pts = generators::generate(family, 1500, 5).points;
     const auto ours = engine::triangulate(pts, {}).tetrahedra;
     const auto report = engine::validate(pts, ours);

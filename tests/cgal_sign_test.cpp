@@ -14,14 +14,17 @@ namespace {
 using CgalKernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using CgalPoint = CgalKernel::Point_3;
 
-CgalPoint cgal(const Point3& p) { return {p.x, p.y, p.z}; }
+CgalPoint cgal(const Point3& p) {
+  return {p.x, p.y, p.z};
+}
 
 int cgal_orientation(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   return static_cast<int>(CGAL::orientation(cgal(a), cgal(b), cgal(c), cgal(d)));
 }
-int cgal_side_of_oriented_sphere(const Point3& a, const Point3& b, const Point3& c,
-                                 const Point3& d, const Point3& e) {
-  return static_cast<int>(CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
+int cgal_side_of_oriented_sphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                                 const Point3& e) {
+  return static_cast<int>(
+      CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
 }
 
 TEST(SignConvention, PositiveTetrahedronAndInside) {
@@ -34,9 +37,12 @@ TEST(SignConvention, PositiveTetrahedronAndInside) {
 }
 
 RC_GTEST_PROP(SignConvention, MatchesCgal, ()) {
-  const auto p = *rc::gen::container<std::vector<Point3>>(5, rc::gen::oneOf(unit_point(), grid_point()));
-  RC_ASSERT(predicates::AdaptiveKernel::orient3d(p[0], p[1], p[2], p[3]) == cgal_orientation(p[0], p[1], p[2], p[3]));
-  RC_ASSERT(predicates::ExactKernel::orient3d(p[0], p[1], p[2], p[3]) == cgal_orientation(p[0], p[1], p[2], p[3]));
+  const auto p =
+      *rc::gen::container<std::vector<Point3>>(5, rc::gen::oneOf(unit_point(), grid_point()));
+  RC_ASSERT(predicates::AdaptiveKernel::orient3d(p[0], p[1], p[2], p[3]) ==
+            cgal_orientation(p[0], p[1], p[2], p[3]));
+  RC_ASSERT(predicates::ExactKernel::orient3d(p[0], p[1], p[2], p[3]) ==
+            cgal_orientation(p[0], p[1], p[2], p[3]));
   RC_ASSERT(predicates::AdaptiveKernel::insphere(p[0], p[1], p[2], p[3], p[4]) ==
             cgal_side_of_oriented_sphere(p[0], p[1], p[2], p[3], p[4]));
 }

@@ -18,7 +18,8 @@ using dtlab::predicates::Stage;
 int main() {
   std::mt19937_64 rng(7);
   auto integer = [&](int bits) {
-    return static_cast<double>(static_cast<std::int64_t>(rng() >> (64 - bits)) - (std::int64_t{1} << (bits - 1)));
+    return static_cast<double>(static_cast<std::int64_t>(rng() >> (64 - bits)) -
+                               (std::int64_t{1} << (bits - 1)));
   };
   long wrong = 0;
   long exact_stages = 0;
@@ -28,7 +29,8 @@ int main() {
     const Point3 a{integer(30), integer(30), integer(30)};
     const Point3 b{integer(30), integer(30), integer(30)};
     const Point3 c{integer(30), integer(30), integer(30)};
-    const Point3 d{b.x + c.x - a.x, b.y + c.y - a.y, b.z + c.z - a.z + static_cast<double>(i % 3 - 1)};
+    const Point3 d{b.x + c.x - a.x, b.y + c.y - a.y,
+                   b.z + c.z - a.z + static_cast<double>(i % 3 - 1)};
     const auto o = AdaptiveKernel::orient3d_staged(a, b, c, d);
     if (o.stage != Stage::A) ++exact_stages;
     if (o.sign != ExactKernel::orient3d(a, b, c, d)) ++wrong;

@@ -38,7 +38,8 @@ struct OnePointFixture {
   void expect_valid_with(std::size_t count) const {
     EXPECT_EQ(tets.size(), count);
     for (const auto& t : tets) {
-      EXPECT_EQ(AdaptiveKernel::orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]), 1);
+      EXPECT_EQ(AdaptiveKernel::orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]),
+                1);
     }
     EXPECT_TRUE(engine::validate(points, tets).valid()) << engine::validate(points, tets).json();
   }
@@ -98,7 +99,8 @@ TEST(Swaps, GridDataNeedsS22AndS44) {
 TEST(BadInput, NoTetrahedralizationIsAnError) {
   TriangulateOptions options;
   EXPECT_THROW(engine::triangulate({}, options), engine::TriangulationError);
-  EXPECT_THROW(engine::triangulate({{0, 0, 0}, {1, 1, 1}, {0, 0, 0}}, options), engine::TriangulationError);
+  EXPECT_THROW(engine::triangulate({{0, 0, 0}, {1, 1, 1}, {0, 0, 0}}, options),
+               engine::TriangulationError);
   EXPECT_THROW(engine::triangulate(generators::generate("coplanar", 50, 1).points, options),
                engine::TriangulationError);
   EXPECT_THROW(engine::triangulate(generators::generate("collinear", 50, 1).points, options),
@@ -122,7 +124,8 @@ TEST(BadInput, MagnitudesBeyondTheAdaptiveRangeAreRefusedNotMisjudged) {
   options.kernel = engine::KernelKind::Adaptive;
   for (const std::string family : {"tiny", "huge"}) {
     const auto pts = generators::generate(family, 300, 3).points;
-    EXPECT_TRUE(engine::validate(pts, engine::triangulate(pts, options).tetrahedra).valid()) << family;
+    EXPECT_TRUE(engine::validate(pts, engine::triangulate(pts, options).tetrahedra).valid())
+        << family;
   }
 }
 

@@ -19,7 +19,8 @@ using predicates::Point3;
 std::uint64_t digest(const std::vector<Point3>& p) {
   std::uint64_t h = 1469598103934665603ull;
   for (const Point3& q : p) {
-    for (const double c : {q.x, q.y, q.z}) h = (h ^ std::bit_cast<std::uint64_t>(c)) * 1099511628211ull;
+    for (const double c : {q.x, q.y, q.z})
+      h = (h ^ std::bit_cast<std::uint64_t>(c)) * 1099511628211ull;
   }
   return h;
 }
@@ -76,7 +77,8 @@ TEST(Generators, GridPointsAreOnTheDyadicGrid) {
 
 TEST(Generators, SpherePointsAreOnTheSphereWithinRounding) {
   for (const Point3& q : generate("sphere", 1000, 9).points) {
-    const double r = std::sqrt((q.x - 0.5) * (q.x - 0.5) + (q.y - 0.5) * (q.y - 0.5) + (q.z - 0.5) * (q.z - 0.5));
+    const double r = std::sqrt((q.x - 0.5) * (q.x - 0.5) + (q.y - 0.5) * (q.y - 0.5) +
+                               (q.z - 0.5) * (q.z - 0.5));
     EXPECT_NEAR(r, 0.5, 1e-15);
   }
 }

@@ -82,8 +82,10 @@ TEST_F(IoTest, VtuHasPointsCellsAndCellData) {
 }
 
 std::string ply_header(const std::string& format, std::size_t n, const std::string& type) {
-  return "ply\nformat " + format + " 1.0\ncomment test\nelement face 1\nproperty list uchar int vertex_indices\n"
-         "element vertex " + std::to_string(n) + "\nproperty " + type + " x\nproperty " + type +
+  return "ply\nformat " + format +
+         " 1.0\ncomment test\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "element vertex " +
+         std::to_string(n) + "\nproperty " + type + " x\nproperty " + type +
          " y\nproperty uchar red\nproperty " + type + " z\nend_header\n";
 }
 
@@ -92,7 +94,8 @@ std::string binary_body(const std::vector<Point3>& p, bool big_endian) {
   std::string out;
   auto put = [&](const void* data, std::size_t size) {
     std::string bytes(static_cast<const char*>(data), size);
-    if (big_endian != (std::endian::native == std::endian::big)) std::reverse(bytes.begin(), bytes.end());
+    if (big_endian != (std::endian::native == std::endian::big))
+      std::reverse(bytes.begin(), bytes.end());
     out += bytes;
   };
   const unsigned char count = 3;
@@ -156,12 +159,16 @@ TEST_F(IoTest, BadInputGetsClearErrors) {
   expect_error(write("short.xyz", "1 2 3\n4 5\n"), "short.xyz:2: expected three coordinates");
   expect_error(write("word.xyz", "1 2 x3\n"), "expected a number");
   expect_error(write("big.xyz", "1 2 1e999\n"), "out of the range");
-  expect_error(write("t.ply", ply_header("binary_little_endian", 10, "double") + "\x03"), "truncated");
-  expect_error(write("ta.ply", ply_header("ascii", 3, "double") + "3 0 1 2\n1 2 3 4\n"), "truncated");
+  expect_error(write("t.ply", ply_header("binary_little_endian", 10, "double") + "\x03"),
+               "truncated");
+  expect_error(write("ta.ply", ply_header("ascii", 3, "double") + "3 0 1 2\n1 2 3 4\n"),
+               "truncated");
   expect_error(write("nomagic.ply", "plx\n"), "not a PLY file");
   expect_error(write("noend.ply", "ply\nformat ascii 1.0\n"), "end_header");
-  expect_error(write("novert.ply", "ply\nformat ascii 1.0\nelement face 0\nend_header\n"), "no vertex element");
-  expect_error(write("n.ply", ply_header("ascii", 1, "double") + "3 0 1 2\nnan 1 1 1\n"), "non-finite");
+  expect_error(write("novert.ply", "ply\nformat ascii 1.0\nelement face 0\nend_header\n"),
+               "no vertex element");
+  expect_error(write("n.ply", ply_header("ascii", 1, "double") + "3 0 1 2\nnan 1 1 1\n"),
+               "non-finite");
   expect_error(write("a.off", "OFF\n5 0 0\n0 0 0\n"), "truncated");
   expect_error(write("b.node", "3 3 0 0\n0 0 0 0\n2 1 1 1\n"), "out of sequence");
   expect_error(write("c.node", "2 2 0 0\n"), "dimension must be 3");

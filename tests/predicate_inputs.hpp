@@ -12,7 +12,9 @@ namespace dtlab::test {
 
 using predicates::Point3;
 
-inline Point3 add(const Point3& a, const Point3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Point3 add(const Point3& a, const Point3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
 
 // A double in [0, 1) from 30 random bits.
 inline rc::Gen<double> unit_double() {
@@ -21,17 +23,21 @@ inline rc::Gen<double> unit_double() {
 }
 
 inline rc::Gen<Point3> unit_point() {
-  return rc::gen::apply([](double x, double y, double z) { return Point3{x, y, z}; },
-                        unit_double(), unit_double(), unit_double());
+  return rc::gen::apply(
+      [](double x, double y, double z) {
+        return Point3{x, y, z};
+      },
+      unit_double(), unit_double(), unit_double());
 }
 
 // Small integer grid points, so exact ties are frequent.
 inline rc::Gen<Point3> grid_point() {
-  return rc::gen::map(rc::gen::tuple(rc::gen::inRange(-3, 4), rc::gen::inRange(-3, 4), rc::gen::inRange(-3, 4)),
-                      [](const std::tuple<int, int, int>& t) {
-                        return Point3{static_cast<double>(std::get<0>(t)), static_cast<double>(std::get<1>(t)),
-                                      static_cast<double>(std::get<2>(t))};
-                      });
+  return rc::gen::map(
+      rc::gen::tuple(rc::gen::inRange(-3, 4), rc::gen::inRange(-3, 4), rc::gen::inRange(-3, 4)),
+      [](const std::tuple<int, int, int>& t) {
+        return Point3{static_cast<double>(std::get<0>(t)), static_cast<double>(std::get<1>(t)),
+                      static_cast<double>(std::get<2>(t))};
+      });
 }
 
 // Moves every coordinate by `ulps` units in the last place.
@@ -44,7 +50,8 @@ inline Point3 nudge(Point3 p, int ulps) {
 }
 
 // A point near the plane abc (rounded affine combination), nudged by a few ulps.
-inline Point3 near_plane(const Point3& a, const Point3& b, const Point3& c, double s, double t, int ulps) {
+inline Point3 near_plane(const Point3& a, const Point3& b, const Point3& c, double s, double t,
+                         int ulps) {
   const Point3 p{a.x + s * (b.x - a.x) + t * (c.x - a.x), a.y + s * (b.y - a.y) + t * (c.y - a.y),
                  a.z + s * (b.z - a.z) + t * (c.z - a.z)};
   return nudge(p, ulps);

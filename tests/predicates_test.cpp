@@ -55,7 +55,8 @@ RC_GTEST_PROP(AdaptiveVsExact, NearlyCospherical, ()) {
   const Point3 centre = *unit_point();
   const double r = 0.25 + *unit_double();
   std::array<Point3, 5> p{};
-  for (auto& q : p) q = near_sphere(centre, r, *unit_double(), *unit_double(), *rc::gen::inRange(-2, 3));
+  for (auto& q : p)
+    q = near_sphere(centre, r, *unit_double(), *unit_double(), *rc::gen::inRange(-2, 3));
   expect_insphere_agrees(p[0], p[1], p[2], p[3], p[4]);
 }
 
@@ -73,7 +74,8 @@ RC_GTEST_PROP(AdaptiveVsExact, LargeOffsetsAndTinyScales, ()) {
   // Points near a sphere far from the origin: rounded differences, tails, stage C and D.
   const Point3 centre{offset * 0.75, offset * 0.5, offset * 0.25};
   std::array<Point3, 5> s{};
-  for (auto& q : s) q = near_sphere(centre, 1024.0, *unit_double(), *unit_double(), *rc::gen::inRange(-2, 3));
+  for (auto& q : s)
+    q = near_sphere(centre, 1024.0, *unit_double(), *unit_double(), *rc::gen::inRange(-2, 3));
   expect_insphere_agrees(s[0], s[1], s[2], s[3], s[4]);
 }
 
@@ -92,11 +94,12 @@ RC_GTEST_PROP(AdaptiveVsExact, CoplanarLiftedIncircle, ()) {
 }
 
 RC_GTEST_PROP(Symmetry, PermutationsFlipOrKeepSign, ()) {
-  const auto p = *rc::gen::container<std::vector<Point3>>(5, rc::gen::oneOf(unit_point(), grid_point()));
+  const auto p =
+      *rc::gen::container<std::vector<Point3>>(5, rc::gen::oneOf(unit_point(), grid_point()));
   const int o = AdaptiveKernel::orient3d(p[0], p[1], p[2], p[3]);
-  RC_ASSERT(AdaptiveKernel::orient3d(p[1], p[0], p[2], p[3]) == -o);        // odd
-  RC_ASSERT(AdaptiveKernel::orient3d(p[1], p[2], p[0], p[3]) == o);         // even
-  RC_ASSERT(AdaptiveKernel::orient3d(p[3], p[2], p[1], p[0]) == o);         // even
+  RC_ASSERT(AdaptiveKernel::orient3d(p[1], p[0], p[2], p[3]) == -o);  // odd
+  RC_ASSERT(AdaptiveKernel::orient3d(p[1], p[2], p[0], p[3]) == o);   // even
+  RC_ASSERT(AdaptiveKernel::orient3d(p[3], p[2], p[1], p[0]) == o);   // even
   const int s = AdaptiveKernel::insphere(p[0], p[1], p[2], p[3], p[4]);
   RC_ASSERT(AdaptiveKernel::insphere(p[1], p[0], p[2], p[3], p[4]) == -s);  // odd
   RC_ASSERT(AdaptiveKernel::insphere(p[4], p[0], p[1], p[2], p[3]) == s);   // 5-cycle, even
@@ -105,10 +108,13 @@ RC_GTEST_PROP(Symmetry, PermutationsFlipOrKeepSign, ()) {
 
 RC_GTEST_PROP(Symmetry, ExactTranslationAndPowerOfTwoScaling, ()) {
   const auto p = *rc::gen::container<std::vector<Point3>>(5, grid_point());
-  const double shift = std::ldexp(static_cast<double>(*rc::gen::inRange(-64, 64)), *rc::gen::inRange(-4, 20));
+  const double shift =
+      std::ldexp(static_cast<double>(*rc::gen::inRange(-64, 64)), *rc::gen::inRange(-4, 20));
   const int scale = *rc::gen::inRange(-60, 60);
   auto moved = p;
-  for (auto& q : moved) q = {std::ldexp(q.x + shift, scale), std::ldexp(q.y - shift, scale), std::ldexp(q.z + shift, scale)};
+  for (auto& q : moved)
+    q = {std::ldexp(q.x + shift, scale), std::ldexp(q.y - shift, scale),
+         std::ldexp(q.z + shift, scale)};
   RC_ASSERT(AdaptiveKernel::orient3d(p[0], p[1], p[2], p[3]) ==
             AdaptiveKernel::orient3d(moved[0], moved[1], moved[2], moved[3]));
   RC_ASSERT(AdaptiveKernel::insphere(p[0], p[1], p[2], p[3], p[4]) ==
@@ -133,10 +139,12 @@ RC_GTEST_PROP(Perturbation, NeverZeroAndAntisymmetric, ()) {
 // For coplanar points (the infinite vertex's case) the perturbed test never ties either.
 RC_GTEST_PROP(Perturbation, InfiniteCellNeverZero, ()) {
   const auto p = *rc::gen::uniqueBy<std::vector<Point3>>(
-      4, rc::gen::map(rc::gen::pair(rc::gen::inRange(-3, 4), rc::gen::inRange(-3, 4)),
-                      [](const std::pair<int, int>& xy) {
-                        return Point3{static_cast<double>(xy.first), static_cast<double>(xy.second), 0.5};
-                      }),
+      4,
+      rc::gen::map(
+          rc::gen::pair(rc::gen::inRange(-3, 4), rc::gen::inRange(-3, 4)),
+          [](const std::pair<int, int>& xy) {
+            return Point3{static_cast<double>(xy.first), static_cast<double>(xy.second), 0.5};
+          }),
       [](const Point3& q) { return std::make_tuple(q.x, q.y, q.z); });
   RC_PRE(predicates::nondegenerate_projection<ExactKernel>(p[0], p[1], p[2])[1] != 0);
   const int s = predicates::infinite_insphere_perturbed<AdaptiveKernel>(p[0], p[1], p[2], p[3]);
@@ -185,8 +193,9 @@ TEST(FastKernel, DisagreementIsMeasured) {
     if (FastKernel::orient3d(a, b, c, q) != exact) ++fast_wrong;
     if (AdaptiveKernel::orient3d(a, b, c, q) != exact) ++adaptive_wrong;
   }
-  std::printf("orient3d within 2 ulps of a plane: fast %d of %d signs wrong (%.1f%%), adaptive %d\n",
-              fast_wrong, total, 100.0 * fast_wrong / total, adaptive_wrong);
+  std::printf(
+      "orient3d within 2 ulps of a plane: fast %d of %d signs wrong (%.1f%%), adaptive %d\n",
+      fast_wrong, total, 100.0 * fast_wrong / total, adaptive_wrong);
   EXPECT_EQ(adaptive_wrong, 0);
 }
 

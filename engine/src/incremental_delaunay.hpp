@@ -8,11 +8,12 @@
 // infinite vertex stands for the point "behind" a fixed interior point O, in the sense of
 // oriented projective geometry: orient(..., inf, ...) is minus orient(..., O, ...). O is the exact
 // centroid of the first tetrahedron, kept symbolic (a rounded centroid of a flat first
-// tetrahedron can land on its face plane): K::orient3d_centroid decides it exactly. An infinite tetrahedron (a, b, c, inf) then is the unbounded cone
-// from O beyond the hull face abc, so finite and infinite tetrahedra tile all of space, every
-// flip is checked geometrically, and the DAG partitions space as the paper's auxiliary
-// tetrahedron does. The insphere test of an infinite tetrahedron does not use O: a point
-// conflicts with (a, b, c, inf) iff it lies beyond the plane abc, or on it inside circle abc.
+// tetrahedron can land on its face plane): K::orient3d_centroid decides it exactly. An infinite
+// tetrahedron (a, b, c, inf) then is the unbounded cone from O beyond the hull face abc, so finite
+// and infinite tetrahedra tile all of space, every flip is checked geometrically, and the DAG
+// partitions space as the paper's auxiliary tetrahedron does. The insphere test of an infinite
+// tetrahedron does not use O: a point conflicts with (a, b, c, inf) iff it lies beyond the plane
+// abc, or on it inside circle abc.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -46,7 +47,8 @@ class IncrementalDelaunay {
     scratch_new_.clear();
     scratch_new_.push_back(first);
     for (const auto& f : kFaceVertex) {
-      scratch_new_.push_back({first[static_cast<std::size_t>(f[0])], first[static_cast<std::size_t>(f[1])],
+      scratch_new_.push_back({first[static_cast<std::size_t>(f[0])],
+                              first[static_cast<std::size_t>(f[1])],
                               first[static_cast<std::size_t>(f[2])], kInfiniteVertex});
     }
     scratch_old_.clear();
@@ -81,7 +83,8 @@ class IncrementalDelaunay {
     std::vector<VertexId> representative;
     if (!duplicates_.empty()) {
       representative.resize(points_.size());
-      for (std::size_t i = 0; i < representative.size(); ++i) representative[i] = static_cast<VertexId>(i);
+      for (std::size_t i = 0; i < representative.size(); ++i)
+        representative[i] = static_cast<VertexId>(i);
       for (const auto& [duplicate, vertex] : duplicates_) {
         representative[vertex] = std::min(representative[vertex], duplicate);
       }
@@ -137,16 +140,15 @@ class IncrementalDelaunay {
     const int inf = t.index_of(kInfiniteVertex);
     const auto& v = t.vertex;
     if (inf < 0) {
-      return predicates::insphere_perturbed<K>(point(v[0]), point(v[1]), point(v[2]),
-                                               point(v[3]), point(p)) > 0;
+      return predicates::insphere_perturbed<K>(point(v[0]), point(v[1]), point(v[2]), point(v[3]),
+                                               point(p)) > 0;
     }
     // kFaceVertex lists the face with the opposite (infinite) vertex on its negative side;
     // reversed, the infinite vertex lies on the positive side, as the predicate expects.
     const auto& f = kFaceVertex[static_cast<std::size_t>(inf)];
-    return predicates::infinite_insphere_perturbed<K>(point(v[static_cast<std::size_t>(f[0])]),
-                                                      point(v[static_cast<std::size_t>(f[2])]),
-                                                      point(v[static_cast<std::size_t>(f[1])]),
-                                                      point(p)) > 0;
+    return predicates::infinite_insphere_perturbed<K>(
+               point(v[static_cast<std::size_t>(f[0])]), point(v[static_cast<std::size_t>(f[2])]),
+               point(v[static_cast<std::size_t>(f[1])]), point(p)) > 0;
   }
 
   // p inside or on the boundary of t; `o` receives the four orientations.
@@ -226,7 +228,8 @@ class IncrementalDelaunay {
         push_replaced(scratch_old_[r], ring_tet.index_of(b), p, static_cast<int>(r));
       }
     } else if (zeros == 3) {
-      const int m = static_cast<int>(std::find_if(o.begin(), o.end(), [](int s) { return s != 0; }) - o.begin());
+      const int m = static_cast<int>(
+          std::find_if(o.begin(), o.end(), [](int s) { return s != 0; }) - o.begin());
       const VertexId v = tets_[t].vertex[static_cast<std::size_t>(m)];
       if (v != kInfiniteVertex && points_[v] == points_[p]) {
         duplicates_.push_back({p, v});
@@ -392,7 +395,7 @@ class IncrementalDelaunay {
   };
   struct OpenFace {
     FaceKey key;
-    FaceRef ref;     // an existing tetrahedron's face, or (is_new) 4 * new index + face
+    FaceRef ref;  // an existing tetrahedron's face, or (is_new) 4 * new index + face
     bool is_new;
   };
   struct FaceMatch {
@@ -424,7 +427,8 @@ class IncrementalDelaunay {
       const Tet& tet = tets_[o];
       for (int f = 0; f < 4; ++f) {
         const FaceRef outside = tet.neighbor[static_cast<std::size_t>(f)];
-        if (std::find(scratch_old_.begin(), scratch_old_.end(), ref_tet(outside)) != scratch_old_.end()) {
+        if (std::find(scratch_old_.begin(), scratch_old_.end(), ref_tet(outside)) !=
+            scratch_old_.end()) {
           continue;
         }
         open_faces_.push_back({face_key(tet.vertex, f), outside, false});
@@ -463,7 +467,8 @@ class IncrementalDelaunay {
       for (int f = 0; f < 4; ++f) {
         const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
         if (m.is_new) {
-          tet.neighbor[static_cast<std::size_t>(f)] = face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref));
+          tet.neighbor[static_cast<std::size_t>(f)] =
+              face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref));
         } else {
           tet.neighbor[static_cast<std::size_t>(f)] = m.ref;
           tets_[ref_tet(m.ref)].neighbor[static_cast<std::size_t>(ref_face(m.ref))] =
@@ -477,7 +482,8 @@ class IncrementalDelaunay {
       int slot = 0;
       for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
         if (scratch_parent_[j] == -1 || scratch_parent_[j] == static_cast<int>(r)) {
-          old.child[static_cast<std::size_t>(slot++)].store(scratch_created_[j], std::memory_order_release);
+          old.child[static_cast<std::size_t>(slot++)].store(scratch_created_[j],
+                                                            std::memory_order_release);
         }
       }
       old.alive.store(false, std::memory_order_release);

@@ -73,8 +73,8 @@ PointSetInfo analyze(const std::vector<Point3>& points) {
   }
   std::vector<Point3> sorted = points;
   std::sort(sorted.begin(), sorted.end(), predicates::lexicographically_less);
-  info.distinct = static_cast<std::uint64_t>(
-      std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  info.distinct =
+      static_cast<std::uint64_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
   info.duplicates = info.count - info.distinct;
   std::vector<std::uint32_t> order(points.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
@@ -85,11 +85,16 @@ PointSetInfo analyze(const std::vector<Point3>& points) {
 
 std::string dimension_name(int dimension) {
   switch (dimension) {
-    case 0: return "0 (all points coincide)";
-    case 1: return "1 (all points collinear)";
-    case 2: return "2 (all points coplanar)";
-    case 3: return "3";
-    default: return "none (no points)";
+    case 0:
+      return "0 (all points coincide)";
+    case 1:
+      return "1 (all points collinear)";
+    case 2:
+      return "2 (all points coplanar)";
+    case 3:
+      return "3";
+    default:
+      return "none (no points)";
   }
 }
 

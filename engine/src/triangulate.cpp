@@ -4,12 +4,12 @@
 
 #include <sys/resource.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/generators/random.hpp"
@@ -39,7 +39,8 @@ std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
 
 class Progress {
  public:
-  Progress(bool enabled, std::size_t total) : enabled_(enabled), total_(total), start_(Clock::now()) {}
+  Progress(bool enabled, std::size_t total)
+      : enabled_(enabled), total_(total), start_(Clock::now()) {}
   void update(std::size_t done) {
     if (!enabled_ || (done & 0x3FFF) != 0) return;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
@@ -73,9 +74,15 @@ std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t inpu
     progress.update(++done);
     if (skip_first && (v == first[0] || v == first[1] || v == first[2] || v == first[3])) continue;
     switch (dt.insert(v)) {
-      case IncrementalDelaunay<K>::Outcome::Inserted: ++stats.inserted; break;
-      case IncrementalDelaunay<K>::Outcome::Duplicate: ++stats.duplicates; break;
-      case IncrementalDelaunay<K>::Outcome::Abandoned: ++stats.abandoned_insertions; break;
+      case IncrementalDelaunay<K>::Outcome::Inserted:
+        ++stats.inserted;
+        break;
+      case IncrementalDelaunay<K>::Outcome::Duplicate:
+        ++stats.duplicates;
+        break;
+      case IncrementalDelaunay<K>::Outcome::Abandoned:
+        ++stats.abandoned_insertions;
+        break;
     }
   }
   stats.dag_nodes = dt.dag_nodes();
@@ -89,7 +96,8 @@ std::vector<Tetrahedron> run_kernel(const std::vector<Point3>& points, std::size
                                     const std::array<std::uint32_t, 4>& first, bool skip_first,
                                     const TriangulateOptions& options, TriangulationStats& stats) {
   if (options.audit) {
-    return run<predicates::Audited<K>>(points, input_count, order, first, skip_first, options, stats);
+    return run<predicates::Audited<K>>(points, input_count, order, first, skip_first, options,
+                                       stats);
   }
   return run<K>(points, input_count, order, first, skip_first, options, stats);
 }
@@ -100,13 +108,16 @@ std::vector<Tetrahedron> dispatch(const std::vector<Point3>& points, std::size_t
                                   const TriangulateOptions& options, TriangulationStats& stats) {
   switch (options.kernel) {
     case KernelKind::Fast:
-      return run_kernel<predicates::FastKernel>(points, input_count, order, first, skip_first, options, stats);
+      return run_kernel<predicates::FastKernel>(points, input_count, order, first, skip_first,
+                                                options, stats);
     case KernelKind::Exact:
-      return run_kernel<predicates::ExactKernel>(points, input_count, order, first, skip_first, options, stats);
+      return run_kernel<predicates::ExactKernel>(points, input_count, order, first, skip_first,
+                                                 options, stats);
     case KernelKind::Adaptive:
       break;
   }
-  return run_kernel<predicates::AdaptiveKernel>(points, input_count, order, first, skip_first, options, stats);
+  return run_kernel<predicates::AdaptiveKernel>(points, input_count, order, first, skip_first,
+                                                options, stats);
 }
 
 // Canonical form of a tetrahedron (sorted ids) for comparing meshes.
@@ -120,14 +131,21 @@ std::vector<Tetrahedron> canonical(std::vector<Tetrahedron> tets) {
 
 const char* to_string(KernelKind k) {
   switch (k) {
-    case KernelKind::Fast: return "fast";
-    case KernelKind::Adaptive: return "adaptive";
-    case KernelKind::Exact: return "exact";
+    case KernelKind::Fast:
+      return "fast";
+    case KernelKind::Adaptive:
+      return "adaptive";
+    case KernelKind::Exact:
+      return "exact";
   }
   return "?";
 }
-const char* to_string(Bounding b) { return b == Bounding::Infinite ? "infinite" : "aux-tet"; }
-const char* to_string(Location) { return "dag"; }
+const char* to_string(Bounding b) {
+  return b == Bounding::Infinite ? "infinite" : "aux-tet";
+}
+const char* to_string(Location) {
+  return "dag";
+}
 
 Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOptions& options) {
   const auto start = Clock::now();
@@ -159,7 +177,8 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
                   "coordinate magnitudes span %.3g .. %.3g, more than the adaptive kernel can "
                   "decide exactly (ratio above 2^%d, see docs/predicates.md); use "
                   "--predicates exact",
-                  min_abs, max_abs, predicates::kScaledMaxExponent - 1 - predicates::kRangeMinExponent);
+                  min_abs, max_abs,
+                  predicates::kScaledMaxExponent - 1 - predicates::kRangeMinExponent);
     throw TriangulationError(message);
   }
   if (scaling.fits) {
@@ -180,7 +199,8 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
   }
 
   if (options.bounding == Bounding::Infinite) {
-    result.tetrahedra = dispatch(points, input.size(), order, *search.simplex, true, options, stats);
+    result.tetrahedra =
+        dispatch(points, input.size(), order, *search.simplex, true, options, stats);
   } else {
     // The paper's auxiliary tetrahedron: (m,0,0), (0,m,0), (0,0,m), (-m,-m,-m) around the box
     // centre, m = 200 x the box size; removed with every tetrahedron touching it at the end.
@@ -198,7 +218,8 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     points.push_back({c.x, c.y + m, c.z});
     points.push_back({c.x, c.y, c.z + m});
     points.push_back({c.x - m, c.y - m, c.z - m});
-    result.tetrahedra = dispatch(points, input.size(), order, {n, n + 1, n + 2, n + 3}, false, options, stats);
+    result.tetrahedra =
+        dispatch(points, input.size(), order, {n, n + 1, n + 2, n + 3}, false, options, stats);
   }
   stats.tetrahedra = result.tetrahedra.size();
   stats.seconds.total = std::chrono::duration<double>(Clock::now() - start).count();
@@ -214,7 +235,8 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     const auto exact = canonical(triangulate(input, reference).tetrahedra);
     const auto aux = canonical(result.tetrahedra);
     std::vector<Tetrahedron> lost;
-    std::set_difference(exact.begin(), exact.end(), aux.begin(), aux.end(), std::back_inserter(lost));
+    std::set_difference(exact.begin(), exact.end(), aux.begin(), aux.end(),
+                        std::back_inserter(lost));
     stats.hull_tetrahedra_lost = static_cast<std::int64_t>(lost.size());
   }
   stats.peak_rss_bytes = peak_rss_bytes();
@@ -233,7 +255,8 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"subdivision", s.seconds.subdivision},
                   {"legalization", s.seconds.legalization},
                   {"other", s.seconds.other}};
-  j["flips"] = {{"S23", s.flips.s23}, {"S32", s.flips.s32}, {"S22", s.flips.s22}, {"S44", s.flips.s44}};
+  j["flips"] = {
+      {"S23", s.flips.s23}, {"S32", s.flips.s32}, {"S22", s.flips.s22}, {"S44", s.flips.s44}};
   j["dag_nodes"] = s.dag_nodes;
   j["predicate_calls"] = s.predicate_calls;
   j["abandoned_insertions"] = s.abandoned_insertions;

@@ -193,7 +193,9 @@ bool ValidationReport::consistent() const {
          missing_points == 0 && repeated_duplicates == 0 && euler_characteristic == 1;
 }
 
-bool ValidationReport::valid() const { return consistent() && non_delaunay_faces == 0; }
+bool ValidationReport::valid() const {
+  return consistent() && non_delaunay_faces == 0;
+}
 
 std::string ValidationReport::json() const {
   nlohmann::ordered_json j;

@@ -15,7 +15,9 @@ namespace {
 using detail::Random;
 using Points = std::vector<Point3>;
 
-Point3 uniform_point(Random& rng) { return {rng.uniform(), rng.uniform(), rng.uniform()}; }
+Point3 uniform_point(Random& rng) {
+  return {rng.uniform(), rng.uniform(), rng.uniform()};
+}
 
 // A normal coordinate with mean `mean` and deviation `sigma`, redrawn until inside [0, 1].
 double normal_in_unit(Random& rng, double mean, double sigma) {
@@ -53,11 +55,13 @@ Points normal(std::int64_t n, Random& rng) {
 Points cluster(std::int64_t n, Random& rng) {
   const std::int64_t groups = std::clamp<std::int64_t>(n / 1000, 1, 10);
   std::vector<Point3> centres(static_cast<std::size_t>(groups));
-  for (auto& c : centres) c = {0.1 + 0.8 * rng.uniform(), 0.1 + 0.8 * rng.uniform(), 0.1 + 0.8 * rng.uniform()};
+  for (auto& c : centres)
+    c = {0.1 + 0.8 * rng.uniform(), 0.1 + 0.8 * rng.uniform(), 0.1 + 0.8 * rng.uniform()};
   Points p(static_cast<std::size_t>(n));
   for (auto& q : p) {
     const Point3& c = centres[rng.below(static_cast<std::uint64_t>(groups))];
-    q = {normal_in_unit(rng, c.x, 0.03), normal_in_unit(rng, c.y, 0.03), normal_in_unit(rng, c.z, 0.03)};
+    q = {normal_in_unit(rng, c.x, 0.03), normal_in_unit(rng, c.y, 0.03),
+         normal_in_unit(rng, c.z, 0.03)};
   }
   return p;
 }
@@ -70,7 +74,8 @@ Points grid(std::int64_t n, Random& /*rng*/) {
   for (std::int64_t i = 0; i < k; ++i) {
     for (std::int64_t j = 0; j < k; ++j) {
       for (std::int64_t l = 0; l < k; ++l) {
-        p.push_back({static_cast<double>(i) * h, static_cast<double>(j) * h, static_cast<double>(l) * h});
+        p.push_back(
+            {static_cast<double>(i) * h, static_cast<double>(j) * h, static_cast<double>(l) * h});
       }
     }
   }
@@ -118,7 +123,8 @@ void integer_sphere(std::int64_t r2, Points& out) {
       const auto z = static_cast<std::int64_t>(std::llround(std::sqrt(static_cast<double>(rest))));
       if (z * z != rest) continue;
       out.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)});
-      if (z != 0) out.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(-z)});
+      if (z != 0)
+        out.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(-z)});
     }
   }
 }
@@ -141,7 +147,8 @@ Points cospherical(std::int64_t n, Random& rng) {
     integer_sphere(r * r, exact);
   }
   double max_abs = 1.0;
-  for (const auto& q : exact) max_abs = std::max({max_abs, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+  for (const auto& q : exact)
+    max_abs = std::max({max_abs, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
   const double scale = std::ldexp(1.0, -static_cast<int>(std::ceil(std::log2(max_abs))) - 1);
   // Take the needed count in a seeded order so that every sphere contributes.
   for (std::size_t i = exact.size(); i > 1; --i) std::swap(exact[i - 1], exact[rng.below(i)]);

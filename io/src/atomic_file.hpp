@@ -1,9 +1,9 @@
 #pragma once
 // Writes to PATH.tmp-PID and renames it to PATH on commit(); removes the temporary otherwise.
+#include <unistd.h>
 #include <cstdio>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "dtlab/io/input_error.hpp"
 

@@ -77,7 +77,8 @@ void write_vtu(const std::string& path, const std::vector<Point3>& points,
   }
   out << "</DataArray>\n</Points>\n<Cells>\n"
          "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (const Tetrahedron& t : tets) out << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
+  for (const Tetrahedron& t : tets)
+    out << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
   out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
   for (std::size_t i = 0; i < tets.size(); ++i) out << 4 * (i + 1) << '\n';
   out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
@@ -134,8 +135,8 @@ std::vector<Tetrahedron> read_ele(const std::string& path, std::size_t point_cou
       const std::int64_t v = scan.parse_integer(token, "vertex id") - node_index_base;
       if (v < 0 || static_cast<std::size_t>(v) >= point_count) {
         scan.fail("vertex id " + std::string(token) + " is not a point of the .node (" +
-                  std::to_string(point_count) + " points, base " +
-                  std::to_string(node_index_base) + ")");
+                  std::to_string(point_count) + " points, base " + std::to_string(node_index_base) +
+                  ")");
       }
       t[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(v);
     }

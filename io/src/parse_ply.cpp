@@ -74,7 +74,8 @@ class BinaryReader {
     }
     std::uint64_t u = 0;
     for (int i = 0; i < t.size; ++i) {
-      u |= static_cast<std::uint64_t>(raw[i]) << (8 * (std::endian::native == std::endian::little ? i : t.size - 1 - i));
+      u |= static_cast<std::uint64_t>(raw[i])
+           << (8 * (std::endian::native == std::endian::little ? i : t.size - 1 - i));
     }
     if (t.is_signed && t.size < 8 && (u >> (8 * t.size - 1)) != 0) {
       u |= ~std::uint64_t{0} << (8 * t.size);
@@ -150,10 +151,14 @@ std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
     std::string_view b;
     if (keyword == "format") {
       TextScanner::next_token(line, a);
-      if (a == "ascii") encoding = Encoding::Ascii;
-      else if (a == "binary_little_endian") encoding = Encoding::LittleEndian;
-      else if (a == "binary_big_endian") encoding = Encoding::BigEndian;
-      else scan.fail("unknown PLY format '" + std::string(a) + "'");
+      if (a == "ascii")
+        encoding = Encoding::Ascii;
+      else if (a == "binary_little_endian")
+        encoding = Encoding::LittleEndian;
+      else if (a == "binary_big_endian")
+        encoding = Encoding::BigEndian;
+      else
+        scan.fail("unknown PLY format '" + std::string(a) + "'");
     } else if (keyword == "element") {
       if (!TextScanner::next_token(line, a) || !TextScanner::next_token(line, b)) {
         scan.fail("element line needs a name and a count");
@@ -169,8 +174,8 @@ std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
         std::string_view count_type;
         std::string_view item_type;
         std::string_view pname;
-        if (!TextScanner::next_token(line, count_type) || !TextScanner::next_token(line, item_type) ||
-            !TextScanner::next_token(line, pname)) {
+        if (!TextScanner::next_token(line, count_type) ||
+            !TextScanner::next_token(line, item_type) || !TextScanner::next_token(line, pname)) {
           scan.fail("list property needs a count type, an item type and a name");
         }
         const auto ct = scalar_type(count_type);
@@ -232,14 +237,16 @@ std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
           if (p.is_list) {
             const double n = read_scalar(p.count_type, where);
             if (n < 0) throw InputError(name + ": negative list length in " + where);
-            for (std::int64_t j = 0; j < static_cast<std::int64_t>(n); ++j) read_scalar(p.type, where);
+            for (std::int64_t j = 0; j < static_cast<std::int64_t>(n); ++j)
+              read_scalar(p.type, where);
             continue;
           }
           const double v = read_scalar(p.type, where);
           const int kk = static_cast<int>(k);
           if (e == vertex_index && (kk == ix || kk == iy || kk == iz)) {
             if (!std::isfinite(v)) {
-              throw InputError(name + ": vertex #" + std::to_string(r) + " has a non-finite " + p.name);
+              throw InputError(name + ": vertex #" + std::to_string(r) + " has a non-finite " +
+                               p.name);
             }
             xyz[kk == ix ? 0 : (kk == iy ? 1 : 2)] = v;
           }
@@ -253,7 +260,8 @@ std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
     read_elements([&](const ScalarType&, const std::string& where) { return reader.read(where); });
   } else {
     BinaryReader reader(body, *encoding == Encoding::BigEndian, name);
-    read_elements([&](const ScalarType& t, const std::string& where) { return reader.read(t, where); });
+    read_elements(
+        [&](const ScalarType& t, const std::string& where) { return reader.read(t, where); });
   }
   return points;
 }

@@ -88,8 +88,8 @@ std::vector<Point3> parse_node(std::string_view text, const std::string& name) {
   std::int64_t base = 0;
   for (std::int64_t i = 0; i < count; ++i) {
     if (!scan.next_content_line(line)) {
-      scan.fail("truncated: header announces " + std::to_string(count) + " points, file ends after " +
-                std::to_string(i));
+      scan.fail("truncated: header announces " + std::to_string(count) +
+                " points, file ends after " + std::to_string(i));
     }
     if (!TextScanner::next_token(line, token)) scan.fail("missing point index");
     const std::int64_t index = scan.parse_integer(token, "point index");

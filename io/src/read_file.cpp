@@ -11,7 +11,8 @@ namespace dtlab::io {
 namespace {
 
 bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::string decompress_xz(const std::string& packed, const std::string& path) {
@@ -56,8 +57,9 @@ std::vector<Point3> read_points(const std::string& path) {
   if (ends_with(name, ".xz")) name.resize(name.size() - 3);
   auto has = [&](std::string_view ext) { return ends_with(name, ext); };
   if (!has(".xyz") && !has(".ply") && !has(".off") && !has(".node") && !has(".txt")) {
-    throw InputError(path + ": unknown point format (expected .xyz, .ply, .off or .node, "
-                            "optionally .xz-compressed, or a generator spec such as uniform:1000)");
+    throw InputError(path +
+                     ": unknown point format (expected .xyz, .ply, .off or .node, "
+                     "optionally .xz-compressed, or a generator spec such as uniform:1000)");
   }
   const std::string bytes = read_file_bytes(path);
   if (has(".ply")) return parse_ply(bytes, path);

@@ -46,7 +46,9 @@ class TextScanner {
     while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
     return s;
   }
-  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+  static bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+  }
 
   // Splits off the next whitespace-separated token of `line`; false when none is left.
   static bool next_token(std::string_view& line, std::string_view& token) {

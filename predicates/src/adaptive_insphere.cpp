@@ -15,7 +15,9 @@ using detail::scale;
 using detail::times_squared_length;
 using expansion::two_diff_tail;
 
-int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+int sign_of(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
 
 // Exact insphere from raw coordinates, Shewchuk's sign: the 5x5 determinant with rows
 // [x y z x^2+y^2+z^2 1], expanded along the lifting column into five exact orientations:
@@ -97,14 +99,14 @@ StagedSign insphere_adapt(const Point3& a, const Point3& b, const Point3& c, con
   const double aceps = (adx * cdytail + cdy * adxtail) - (ady * cdxtail + cdx * adytail);
   const double bdeps = (bdx * ddytail + ddy * bdxtail) - (bdy * ddxtail + ddx * bdytail);
   // First-order change of the four 3x3 minors, and their float approximations.
-  const double abc_eps = (adz * bceps - bdz * aceps + cdz * abeps) +
-                         (adztail * bc3 - bdztail * ac3 + cdztail * ab3);
-  const double bcd_eps = (bdz * cdeps - cdz * bdeps + ddz * bceps) +
-                         (bdztail * cd3 - cdztail * bd3 + ddztail * bc3);
-  const double cda_eps = (cdz * daeps + ddz * aceps + adz * cdeps) +
-                         (cdztail * da3 + ddztail * ac3 + adztail * cd3);
-  const double dab_eps = (ddz * abeps + adz * bdeps + bdz * daeps) +
-                         (ddztail * ab3 + adztail * bd3 + bdztail * da3);
+  const double abc_eps =
+      (adz * bceps - bdz * aceps + cdz * abeps) + (adztail * bc3 - bdztail * ac3 + cdztail * ab3);
+  const double bcd_eps =
+      (bdz * cdeps - cdz * bdeps + ddz * bceps) + (bdztail * cd3 - cdztail * bd3 + ddztail * bc3);
+  const double cda_eps =
+      (cdz * daeps + ddz * aceps + adz * cdeps) + (cdztail * da3 + ddztail * ac3 + adztail * cd3);
+  const double dab_eps =
+      (ddz * abeps + adz * bdeps + bdz * daeps) + (ddztail * ab3 + adztail * bd3 + bdztail * da3);
   const double abc3 = adz * bc3 - bdz * ac3 + cdz * ab3;
   const double bcd3 = bdz * cd3 - cdz * bd3 + ddz * bc3;
   const double cda3 = cdz * da3 + ddz * ac3 + adz * cd3;
@@ -164,18 +166,17 @@ StagedSign AdaptiveKernel::insphere_staged(const Point3& a, const Point3& b, con
   const double p_ac = std::fabs(aexcey) + std::fabs(cexaey);
   const double p_bd = std::fabs(bexdey) + std::fabs(dexbey);
   const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz), dz = std::fabs(ddz);
-  const double permanent = (p_cd * bz + p_bd * cz + p_bc * dz) * alift +
-                           (p_da * cz + p_ac * dz + p_cd * az) * blift +
-                           (p_ab * dz + p_bd * az + p_da * bz) * clift +
-                           (p_bc * az + p_ac * bz + p_ab * cz) * dlift;
+  const double permanent =
+      (p_cd * bz + p_bd * cz + p_bc * dz) * alift + (p_da * cz + p_ac * dz + p_cd * az) * blift +
+      (p_ab * dz + p_bd * az + p_da * bz) * clift + (p_bc * az + p_ac * bz + p_ab * cz) * dlift;
   const double errbound = bounds::kInsphereA * permanent;
   if (det > errbound || -det > errbound) return {-sign_of(det), Stage::A};
   const StagedSign s = insphere_adapt(a, b, c, d, e, dif, permanent);
   return {-s.sign, s.stage};
 }
 
-StagedSign AdaptiveKernel::incircle_lifted_staged(const Point3& a, const Point3& b,
-                                                  const Point3& c, const Point3& d, int drop) {
+StagedSign AdaptiveKernel::incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
+                                                  const Point3& d, int drop) {
   const int u = projection_u(drop);
   const int v = projection_v(drop);
   const double adu = coordinate(a, u) - coordinate(d, u);
@@ -203,9 +204,11 @@ StagedSign AdaptiveKernel::incircle_lifted_staged(const Point3& a, const Point3&
   // Exact: det[[u v |p|^2 1]] of the raw points, equal to the difference form for coplanar
   // input; expanded along the lifting column into four exact projected orientations.
   const Exp<144> ta = times_squared_length(detail::orient2d_raw(b, c, d, u, v), a.x, a.y, a.z, 1.0);
-  const Exp<144> tb = times_squared_length(detail::orient2d_raw(a, c, d, u, v), b.x, b.y, b.z, -1.0);
+  const Exp<144> tb =
+      times_squared_length(detail::orient2d_raw(a, c, d, u, v), b.x, b.y, b.z, -1.0);
   const Exp<144> tc = times_squared_length(detail::orient2d_raw(a, b, d, u, v), c.x, c.y, c.z, 1.0);
-  const Exp<144> td = times_squared_length(detail::orient2d_raw(a, b, c, u, v), d.x, d.y, d.z, -1.0);
+  const Exp<144> td =
+      times_squared_length(detail::orient2d_raw(a, b, c, u, v), d.x, d.y, d.z, -1.0);
   return {add(add(ta, tb), add(tc, td)).sign(), Stage::D};
 }
 

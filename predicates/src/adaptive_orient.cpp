@@ -13,7 +13,9 @@ using detail::Exp;
 using detail::scale;
 using expansion::two_diff_tail;
 
-int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+int sign_of(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
 
 // Stages B, C and D of Shewchuk's orient3d, his sign: det[a - d; b - d; c - d].
 StagedSign orient3d_adapt(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
@@ -86,8 +88,7 @@ StagedSign AdaptiveKernel::orient3d_staged(const Point3& a, const Point3& b, con
   const double adxbdy = adx * bdy;
   const double bdxady = bdx * ady;
 
-  const double det =
-      adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
   const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
                            (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
                            (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
@@ -120,8 +121,10 @@ StagedSign AdaptiveKernel::orient3d_centroid_staged(const Point3& a, const Point
   const double errbound = (bounds::kOrient3dA + 6.0 * bounds::kEpsilon) * permanents;
   if (sum > errbound || -sum > errbound) return {-sign_of(sum), Stage::A};
   // Exact: the sum of the four exact orientations.
-  const Exp<192> first = add(detail::orient3d_raw(a, b, c, v[0]), detail::orient3d_raw(a, b, c, v[1]));
-  const Exp<192> second = add(detail::orient3d_raw(a, b, c, v[2]), detail::orient3d_raw(a, b, c, v[3]));
+  const Exp<192> first =
+      add(detail::orient3d_raw(a, b, c, v[0]), detail::orient3d_raw(a, b, c, v[1]));
+  const Exp<192> second =
+      add(detail::orient3d_raw(a, b, c, v[2]), detail::orient3d_raw(a, b, c, v[3]));
   return {-add(first, second).sign(), Stage::D};
 }
 
@@ -129,7 +132,8 @@ StagedSign AdaptiveKernel::orient2d_staged(const Point3& a, const Point3& b, con
                                            int drop) {
   const int u = projection_u(drop);
   const int v = projection_v(drop);
-  const double detleft = (coordinate(a, u) - coordinate(c, u)) * (coordinate(b, v) - coordinate(c, v));
+  const double detleft =
+      (coordinate(a, u) - coordinate(c, u)) * (coordinate(b, v) - coordinate(c, v));
   const double detright =
       (coordinate(a, v) - coordinate(c, v)) * (coordinate(b, u) - coordinate(c, u));
   const double det = detleft - detright;

@@ -6,10 +6,14 @@ namespace dtlab::predicates {
 
 const char* predicate_name(Predicate p) {
   switch (p) {
-    case Predicate::Orient3d: return "orient3d";
-    case Predicate::Insphere: return "insphere";
-    case Predicate::Orient2d: return "orient2d";
-    case Predicate::IncircleLifted: return "incircle_lifted";
+    case Predicate::Orient3d:
+      return "orient3d";
+    case Predicate::Insphere:
+      return "insphere";
+    case Predicate::Orient2d:
+      return "orient2d";
+    case Predicate::IncircleLifted:
+      return "incircle_lifted";
   }
   return "?";
 }

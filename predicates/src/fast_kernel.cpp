@@ -4,15 +4,17 @@
 
 namespace dtlab::predicates {
 namespace {
-int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+int sign_of(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
 }  // namespace
 
 int FastKernel::orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   const double adx = a.x - d.x, ady = a.y - d.y, adz = a.z - d.z;
   const double bdx = b.x - d.x, bdy = b.y - d.y, bdz = b.z - d.z;
   const double cdx = c.x - d.x, cdy = c.y - d.y, cdz = c.z - d.z;
-  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
-                     cdz * (adx * bdy - bdx * ady);
+  const double det =
+      adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
   return -sign_of(det);  // dtlab's sign is the negation of Shewchuk's
 }
 
@@ -23,7 +25,8 @@ int FastKernel::orient3d_centroid(const Point3& a, const Point3& b, const Point3
     const double adx = a.x - d.x, ady = a.y - d.y, adz = a.z - d.z;
     const double bdx = b.x - d.x, bdy = b.y - d.y, bdz = b.z - d.z;
     const double cdx = c.x - d.x, cdy = c.y - d.y, cdz = c.z - d.z;
-    sum += adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+    sum += adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
+           cdz * (adx * bdy - bdx * ady);
   }
   return -sign_of(sum);
 }
@@ -58,8 +61,8 @@ int FastKernel::orient2d(const Point3& a, const Point3& b, const Point3& c, int 
                  (coordinate(a, v) - coordinate(c, v)) * (coordinate(b, u) - coordinate(c, u)));
 }
 
-int FastKernel::incircle_lifted(const Point3& a, const Point3& b, const Point3& c,
-                                const Point3& d, int drop) {
+int FastKernel::incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                                int drop) {
   const int u = projection_u(drop);
   const int v = projection_v(drop);
   const double adu = coordinate(a, u) - coordinate(d, u), adv = coordinate(a, v) - coordinate(d, v);

@@ -33,7 +33,8 @@ struct SimplexSearch {
   std::optional<std::array<std::uint32_t, 4>> simplex;
   int dimension = -1;
 };
-SimplexSearch find_simplex(const std::vector<Point3>& points, const std::vector<std::uint32_t>& order);
+SimplexSearch find_simplex(const std::vector<Point3>& points,
+                           const std::vector<std::uint32_t>& order);
 
 // The exponent k such that 2^k * max|coordinate| lies in [2^99, 2^100), and whether every
 // nonzero coordinate then stays within the adaptive kernel's valid range.

@@ -28,9 +28,15 @@ inline constexpr TetId kNoTet = 0xFFFFFFFFu;
 inline constexpr std::array<std::array<int, 3>, 4> kFaceVertex{
     {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
 
-inline FaceRef face_ref(TetId t, int f) { return 4 * t + static_cast<FaceRef>(f); }
-inline TetId ref_tet(FaceRef r) { return r >> 2; }
-inline int ref_face(FaceRef r) { return static_cast<int>(r & 3u); }
+inline FaceRef face_ref(TetId t, int f) {
+  return 4 * t + static_cast<FaceRef>(f);
+}
+inline TetId ref_tet(FaceRef r) {
+  return r >> 2;
+}
+inline int ref_face(FaceRef r) {
+  return static_cast<int>(r & 3u);
+}
 
 struct Tet {
   std::array<VertexId, 4> vertex{};
@@ -63,12 +69,14 @@ class TetStore {
   static constexpr std::size_t kMaxBlocks = std::size_t{1} << 16;  // 2^32 tetrahedra at most
 
   TetStore() : blocks_(new std::atomic<Tet*>[kMaxBlocks]) {
-    for (std::size_t i = 0; i < kMaxBlocks; ++i) blocks_[i].store(nullptr, std::memory_order_relaxed);
+    for (std::size_t i = 0; i < kMaxBlocks; ++i)
+      blocks_[i].store(nullptr, std::memory_order_relaxed);
   }
   TetStore(const TetStore&) = delete;
   TetStore& operator=(const TetStore&) = delete;
   ~TetStore() {
-    for (std::size_t i = 0; i < kMaxBlocks; ++i) delete[] blocks_[i].load(std::memory_order_relaxed);
+    for (std::size_t i = 0; i < kMaxBlocks; ++i)
+      delete[] blocks_[i].load(std::memory_order_relaxed);
   }
 
   Tet& operator[](TetId t) {

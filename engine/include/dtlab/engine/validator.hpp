@@ -20,17 +20,17 @@ struct ValidationReport {
   std::uint64_t interior_faces = 0;
   std::uint64_t boundary_faces = 0;
   // Violations, each counted:
-  std::uint64_t invalid_tetrahedra = 0;      // vertex id out of range or repeated
+  std::uint64_t invalid_tetrahedra = 0;        // vertex id out of range or repeated
   std::uint64_t non_positive_orientation = 0;  // orient3d <= 0 (flat or inverted)
-  std::uint64_t non_manifold_faces = 0;      // a face shared by more than two tetrahedra
-  std::uint64_t inconsistent_faces = 0;      // two tetrahedra on the same side of their face
-  std::uint64_t non_delaunay_faces = 0;      // opposite vertex strictly inside the circumsphere
-  std::uint64_t open_boundary_edges = 0;     // boundary edge not on exactly two boundary faces
-  std::uint64_t reflex_boundary_edges = 0;   // boundary not convex there (union != convex hull)
-  std::uint64_t missing_points = 0;          // distinct input point that is no vertex
-  std::uint64_t repeated_duplicates = 0;     // duplicate set used as a vertex more than once
-  std::int64_t euler_characteristic = 0;     // V - E + F - T; 1 for a triangulated ball
-  std::string kernel;                        // "adaptive" or "exact"
+  std::uint64_t non_manifold_faces = 0;        // a face shared by more than two tetrahedra
+  std::uint64_t inconsistent_faces = 0;        // two tetrahedra on the same side of their face
+  std::uint64_t non_delaunay_faces = 0;        // opposite vertex strictly inside the circumsphere
+  std::uint64_t open_boundary_edges = 0;       // boundary edge not on exactly two boundary faces
+  std::uint64_t reflex_boundary_edges = 0;     // boundary not convex there (union != convex hull)
+  std::uint64_t missing_points = 0;            // distinct input point that is no vertex
+  std::uint64_t repeated_duplicates = 0;       // duplicate set used as a vertex more than once
+  std::int64_t euler_characteristic = 0;       // V - E + F - T; 1 for a triangulated ball
+  std::string kernel;                          // "adaptive" or "exact"
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
 

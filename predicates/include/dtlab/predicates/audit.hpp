@@ -11,7 +11,12 @@
 
 namespace dtlab::predicates {
 
-enum class Predicate : std::uint8_t { Orient3d = 0, Insphere = 1, Orient2d = 2, IncircleLifted = 3 };
+enum class Predicate : std::uint8_t {
+  Orient3d = 0,
+  Insphere = 1,
+  Orient2d = 2,
+  IncircleLifted = 3
+};
 inline constexpr int kPredicateCount = 4;
 const char* predicate_name(Predicate p);
 
@@ -65,7 +70,8 @@ struct Audited {
     }
   }
   // Counted as an orient3d call.
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v) {
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v) {
     if constexpr (requires { K::orient3d_centroid_staged(a, b, c, v); }) {
       const StagedSign s = K::orient3d_centroid_staged(a, b, c, v);
       count(Predicate::Orient3d, static_cast<int>(s.stage));

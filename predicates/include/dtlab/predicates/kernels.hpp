@@ -44,7 +44,8 @@ using Tetrahedron4 = std::array<Point3, 4>;
 
 struct FastKernel {
   static constexpr const char* kName = "fast";
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v);
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v);
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                       const Point3& e);
@@ -66,7 +67,8 @@ struct AdaptiveKernel {
                                            const Point3& d, int drop);
   static StagedSign orient3d_centroid_staged(const Point3& a, const Point3& b, const Point3& c,
                                              const Tetrahedron4& v);
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v) {
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v) {
     return orient3d_centroid_staged(a, b, c, v).sign;
   }
 
@@ -90,7 +92,8 @@ struct AdaptiveKernel {
 // Exact for every finite double input, whatever its magnitude.
 struct ExactKernel {
   static constexpr const char* kName = "exact";
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Tetrahedron4& v);
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v);
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                       const Point3& e);
@@ -100,7 +103,11 @@ struct ExactKernel {
 };
 
 // The two coordinates kept by a projection that drops `drop`, in cyclic order.
-inline int projection_u(int drop) { return (drop + 1) % 3; }
-inline int projection_v(int drop) { return (drop + 2) % 3; }
+inline int projection_u(int drop) {
+  return (drop + 1) % 3;
+}
+inline int projection_v(int drop) {
+  return (drop + 2) % 3;
+}
 
 }  // namespace dtlab::predicates

@@ -37,11 +37,21 @@ int insphere_perturbed(const Point3& a, const Point3& b, const Point3& c, const 
   for (const int i : perturbation_order(pts)) {
     int o = 0;
     switch (i) {
-      case 4: o = -K::orient3d(a, b, c, d); break;  // raising e's lift moves e outside
-      case 3: o = K::orient3d(a, b, c, e); break;   // by antisymmetry, swapping d and e
-      case 2: o = K::orient3d(a, b, e, d); break;
-      case 1: o = K::orient3d(a, e, c, d); break;
-      default: o = K::orient3d(e, b, c, d); break;
+      case 4:
+        o = -K::orient3d(a, b, c, d);
+        break;  // raising e's lift moves e outside
+      case 3:
+        o = K::orient3d(a, b, c, e);
+        break;  // by antisymmetry, swapping d and e
+      case 2:
+        o = K::orient3d(a, b, e, d);
+        break;
+      case 1:
+        o = K::orient3d(a, e, c, d);
+        break;
+      default:
+        o = K::orient3d(e, b, c, d);
+        break;
     }
     if (o != 0) return o;
   }
@@ -86,10 +96,17 @@ int infinite_insphere_perturbed(const Point3& a, const Point3& b, const Point3& 
   for (const int i : perturbation_order(pts)) {
     int s = 0;
     switch (i) {
-      case 3: return -1;  // raising e's lift moves e outside
-      case 2: s = K::orient2d(a, b, e, drop) * o; break;
-      case 1: s = K::orient2d(a, e, c, drop) * o; break;
-      default: s = K::orient2d(e, b, c, drop) * o; break;
+      case 3:
+        return -1;  // raising e's lift moves e outside
+      case 2:
+        s = K::orient2d(a, b, e, drop) * o;
+        break;
+      case 1:
+        s = K::orient2d(a, e, c, drop) * o;
+        break;
+      default:
+        s = K::orient2d(e, b, c, drop) * o;
+        break;
     }
     if (s != 0) return s;
   }
