@@ -43,6 +43,16 @@ class IncrementalDelaunay {
     int o = K::orient3d(pa, pb, pc, pd);
     if (o == 0) throw TriangulationError("the first tetrahedron is flat under this kernel");
     if (o < 0) std::swap(a, b);
+    // O as a plain point when the rounded centroid lies strictly inside the first tetrahedron
+    // (checked exactly): one orient3d instead of four. Otherwise O stays the symbolic centroid.
+    const Point3 rounded{(pa.x + pb.x + pc.x + pd.x) / 4, (pa.y + pb.y + pc.y + pd.y) / 4,
+                         (pa.z + pb.z + pc.z + pd.z) / 4};
+    const Point3 &qa = points_[a], &qb = points_[b];
+    origin_is_point_ = predicates::ExactKernel::orient3d(rounded, qb, pc, pd) > 0 &&
+                       predicates::ExactKernel::orient3d(qa, rounded, pc, pd) > 0 &&
+                       predicates::ExactKernel::orient3d(qa, qb, rounded, pd) > 0 &&
+                       predicates::ExactKernel::orient3d(qa, qb, pc, rounded) > 0;
+    origin_ = rounded;
     const std::array<VertexId, 4> first{a, b, c, d};
     scratch_new_.clear();
     scratch_new_.push_back(first);
@@ -53,6 +63,7 @@ class IncrementalDelaunay {
     }
     scratch_old_.clear();
     scratch_parent_.assign(scratch_new_.size(), -1);
+    scratch_source_.assign(scratch_new_.size(), {kNoTet, 0});
     if (!replace()) throw std::logic_error("dtlab: the first tetrahedron does not close up");
     roots_ = scratch_created_;
   }
@@ -108,6 +119,7 @@ class IncrementalDelaunay {
 
   [[nodiscard]] std::uint64_t dag_nodes() const { return tets_.size(); }
   [[nodiscard]] std::uint64_t predicate_calls() const { return predicate_calls_; }
+  [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
 
  private:
   using Quad = std::array<VertexId, 4>;
@@ -123,7 +135,9 @@ class IncrementalDelaunay {
     // orient(q) = -orient(q with inf -> O); move O to the last slot (a swap: one more sign).
     Quad r = q;
     std::swap(r[static_cast<std::size_t>(inf)], r[3]);
-    const int s = K::orient3d_centroid(point(r[0]), point(r[1]), point(r[2]), first_);
+    const int s = origin_is_point_
+                      ? K::orient3d(point(r[0]), point(r[1]), point(r[2]), origin_)
+                      : K::orient3d_centroid(point(r[0]), point(r[1]), point(r[2]), first_);
     return inf == 3 ? -s : s;
   }
 
@@ -171,28 +185,42 @@ class IncrementalDelaunay {
       }
     }
     std::uint64_t steps = 0;
+    bool tested = true;  // whether `o` holds t's orientations
     while (t != kNoTet && !tets_[t].alive.load(std::memory_order_acquire)) {
       if (++steps > options_.max_location_steps) return kNoTet;
-      TetId next = kNoTet;
-      for (const auto& child : tets_[t].child) {
-        const TetId c = child.load(std::memory_order_acquire);
-        if (c == kNoTet) break;
+      const Tet& node = tets_[t];
+      int count = 0;
+      while (count < 4 && node.child[static_cast<std::size_t>(count)].load(
+                              std::memory_order_acquire) != kNoTet) {
+        ++count;
+      }
+      // The children cover their parent: when all but the last fail, p is in the last one
+      // (verified at the leaf, which only an inexact kernel can fail).
+      TetId next = node.child[static_cast<std::size_t>(count - 1)].load(std::memory_order_acquire);
+      tested = false;
+      for (int k = 0; k + 1 < count; ++k) {
+        const TetId c = node.child[static_cast<std::size_t>(k)].load(std::memory_order_acquire);
         if (contains(c, p, o)) {
           next = c;
+          tested = true;
           break;
         }
       }
-      t = next;  // kNoTet when no child contains p: only an inexact kernel gets here
+      t = next;
     }
+    location_steps_ += steps;
+    if (t != kNoTet && !tested && !contains(t, p, o)) return kNoTet;
     return t;
   }
 
-  // Adds to scratch_new_ tetrahedron `old_index`'s copy with the vertex at `position` replaced.
+  // Adds to scratch_new_ tetrahedron t's copy with the vertex at `position` replaced by v. Its
+  // face `position` is t's face `position`: replace() links it without searching.
   void push_replaced(TetId t, int position, VertexId v, int parent) {
     Quad q = tets_[t].vertex;
     q[static_cast<std::size_t>(position)] = v;
     scratch_new_.push_back(q);
     scratch_parent_.push_back(parent);
+    scratch_source_.push_back({t, position});
   }
 
   // 1->4 inside, 2->6 on a face, k->2k on an edge; a point on a vertex is a duplicate.
@@ -200,6 +228,7 @@ class IncrementalDelaunay {
     scratch_old_.clear();
     scratch_new_.clear();
     scratch_parent_.clear();
+    scratch_source_.clear();
     const int zeros = static_cast<int>(std::count(o.begin(), o.end(), 0));
     if (zeros == 0) {
       scratch_old_.push_back(t);
@@ -379,6 +408,7 @@ class IncrementalDelaunay {
     scratch_old_.assign(old.begin(), old.end());
     scratch_new_.clear();
     scratch_parent_.clear();
+    scratch_source_.clear();
   }
   // False when the flip cannot be applied (inexact kernel only); the mesh is then unchanged.
   bool finish_flip() {
@@ -401,6 +431,7 @@ class IncrementalDelaunay {
   struct FaceMatch {
     FaceRef ref;
     bool is_new;
+    bool set;
   };
 
   static FaceKey face_key(const Quad& v, int f) {
@@ -421,33 +452,45 @@ class IncrementalDelaunay {
   // (only possible with an inexact kernel's contradictory signs) nothing changes and the result
   // is false. The new ids land in scratch_created_.
   bool replace() {
-    // Faces of the region's boundary, seen from outside.
+    auto is_old = [&](TetId t) {
+      return std::find(scratch_old_.begin(), scratch_old_.end(), t) != scratch_old_.end();
+    };
+    // Direct links: new tetrahedron j's face `position` is its source's face `position`.
+    matched_.assign(4 * scratch_new_.size(), FaceMatch{0, false, false});
+    claimed_.clear();
+    for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
+      const auto [source, position] = scratch_source_[j];
+      if (source == kNoTet) continue;
+      const FaceRef outside = tets_[source].neighbor[static_cast<std::size_t>(position)];
+      if (is_old(ref_tet(outside))) continue;
+      matched_[4 * j + static_cast<std::size_t>(position)] = {outside, false, true};
+      claimed_.push_back(face_ref(source, position));
+    }
+    // The other faces of the region's boundary, seen from outside.
     open_faces_.clear();
     for (const TetId o : scratch_old_) {
       const Tet& tet = tets_[o];
       for (int f = 0; f < 4; ++f) {
         const FaceRef outside = tet.neighbor[static_cast<std::size_t>(f)];
-        if (std::find(scratch_old_.begin(), scratch_old_.end(), ref_tet(outside)) !=
-            scratch_old_.end()) {
-          continue;
-        }
+        if (is_old(ref_tet(outside))) continue;
+        if (std::find(claimed_.begin(), claimed_.end(), face_ref(o, f)) != claimed_.end()) continue;
         open_faces_.push_back({face_key(tet.vertex, f), outside, false});
       }
     }
-    // Match the new faces before writing anything.
-    matched_.assign(4 * scratch_new_.size(), FaceMatch{0, false});
+    // Match the remaining new faces before writing anything.
     for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
       for (int f = 0; f < 4; ++f) {
-        const auto key = face_key(scratch_new_[j], f);
         const auto self = static_cast<FaceRef>(4 * j + static_cast<std::size_t>(f));
+        if (matched_[self].set) continue;
+        const auto key = face_key(scratch_new_[j], f);
         const auto match = std::find_if(open_faces_.begin(), open_faces_.end(),
                                         [&](const OpenFace& of) { return of.key == key; });
         if (match == open_faces_.end()) {
           open_faces_.push_back({key, self, true});
           continue;
         }
-        matched_[self] = {match->ref, match->is_new};
-        if (match->is_new) matched_[match->ref] = {self, true};
+        matched_[self] = {match->ref, match->is_new, true};
+        if (match->is_new) matched_[match->ref] = {self, true, true};
         *match = open_faces_.back();
         open_faces_.pop_back();
       }
@@ -495,10 +538,13 @@ class IncrementalDelaunay {
   const std::vector<Point3>& points_;
   const TriangulateOptions& options_;
   TriangulationStats& stats_;
-  predicates::Tetrahedron4 first_{};  // O is the centroid of these four points
+  predicates::Tetrahedron4 first_{};  // O is the centroid of these four points...
+  Point3 origin_{0, 0, 0};            // ...or this point, strictly inside them, when
+  bool origin_is_point_ = false;      // origin_is_point_
   TetStore tets_;
   std::vector<TetId> roots_;
   std::uint64_t predicate_calls_ = 0;
+  std::uint64_t location_steps_ = 0;
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)
 
   // Scratch buffers reused across insertions (no allocation per insertion once warm).
@@ -508,6 +554,8 @@ class IncrementalDelaunay {
   std::vector<TetId> scratch_created_;
   std::vector<OpenFace> open_faces_;
   std::vector<FaceMatch> matched_;
+  std::vector<FaceRef> claimed_;
+  std::vector<std::pair<TetId, int>> scratch_source_;  // (old tetrahedron, replaced position)
   std::vector<TetId> stack_;
 };
 

@@ -87,6 +87,7 @@ std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t inpu
   }
   stats.dag_nodes = dt.dag_nodes();
   stats.predicate_calls = dt.predicate_calls();
+  stats.location_steps = dt.location_steps();
   return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
@@ -259,6 +260,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
       {"S23", s.flips.s23}, {"S32", s.flips.s32}, {"S22", s.flips.s22}, {"S44", s.flips.s44}};
   j["dag_nodes"] = s.dag_nodes;
   j["predicate_calls"] = s.predicate_calls;
+  j["location_steps"] = s.location_steps;
   j["abandoned_insertions"] = s.abandoned_insertions;
   if (s.hull_tetrahedra_lost >= 0) {
     j["hull_tetrahedra_lost"] = s.hull_tetrahedra_lost;

@@ -60,6 +60,7 @@ struct TriangulationStats {
   FlipCounts flips;
   std::uint64_t dag_nodes = 0;
   std::uint64_t predicate_calls = 0;
+  std::uint64_t location_steps = 0;  // DAG nodes descended through, all insertions together
   std::uint64_t abandoned_insertions = 0;
   std::int64_t hull_tetrahedra_lost = -1;  // aux-tet only; -1 when not measured
   std::uint64_t peak_rss_bytes = 0;
