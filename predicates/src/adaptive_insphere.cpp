@@ -12,12 +12,9 @@ namespace {
 using detail::add;
 using detail::Exp;
 using detail::scale;
+using detail::sign_of;
 using detail::times_squared_length;
 using expansion::two_diff_tail;
-
-int sign_of(double v) {
-  return (v > 0.0) - (v < 0.0);
-}
 
 // Exact insphere from raw coordinates, Shewchuk's sign: the 5x5 determinant with rows
 // [x y z x^2+y^2+z^2 1], expanded along the lifting column into five exact orientations:
@@ -38,8 +35,9 @@ struct Differences {
 
 // Stages B, C and D. `dif` holds a - e, b - e, c - e, d - e (named after Shewchuk's code, whose
 // "d" column is our fourth point; the query e is the origin).
-StagedSign insphere_adapt(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                          const Point3& e, const Differences& dif, double permanent) {
+StagedSign insphere_adapt_shewchuk(const Point3& a, const Point3& b, const Point3& c,
+                                   const Point3& d, const Point3& e, const Differences& dif,
+                                   double permanent) {
   const double adx = dif.adx, ady = dif.ady, adz = dif.adz;
   const double bdx = dif.bdx, bdy = dif.bdy, bdz = dif.bdz;
   const double cdx = dif.cdx, cdy = dif.cdy, cdz = dif.cdz;
@@ -128,51 +126,12 @@ StagedSign insphere_adapt(const Point3& a, const Point3& b, const Point3& c, con
 
 }  // namespace
 
-StagedSign AdaptiveKernel::insphere_staged(const Point3& a, const Point3& b, const Point3& c,
-                                           const Point3& d, const Point3& e) {
-  Differences dif{a.x - e.x, a.y - e.y, a.z - e.z, b.x - e.x, b.y - e.y, b.z - e.z,
-                  c.x - e.x, c.y - e.y, c.z - e.z, d.x - e.x, d.y - e.y, d.z - e.z};
-  const double adx = dif.adx, ady = dif.ady, adz = dif.adz;
-  const double bdx = dif.bdx, bdy = dif.bdy, bdz = dif.bdz;
-  const double cdx = dif.cdx, cdy = dif.cdy, cdz = dif.cdz;
-  const double ddx = dif.ddx, ddy = dif.ddy, ddz = dif.ddz;
-
-  const double aexbey = adx * bdy, bexaey = bdx * ady;
-  const double bexcey = bdx * cdy, cexbey = cdx * bdy;
-  const double cexdey = cdx * ddy, dexcey = ddx * cdy;
-  const double dexaey = ddx * ady, aexdey = adx * ddy;
-  const double aexcey = adx * cdy, cexaey = cdx * ady;
-  const double bexdey = bdx * ddy, dexbey = ddx * bdy;
-  const double ab = aexbey - bexaey;
-  const double bc = bexcey - cexbey;
-  const double cd = cexdey - dexcey;
-  const double da = dexaey - aexdey;
-  const double ac = aexcey - cexaey;
-  const double bd = bexdey - dexbey;
-  const double abc = adz * bc - bdz * ac + cdz * ab;
-  const double bcd = bdz * cd - cdz * bd + ddz * bc;
-  const double cda = cdz * da + ddz * ac + adz * cd;
-  const double dab = ddz * ab + adz * bd + bdz * da;
-  const double alift = adx * adx + ady * ady + adz * adz;
-  const double blift = bdx * bdx + bdy * bdy + bdz * bdz;
-  const double clift = cdx * cdx + cdy * cdy + cdz * cdz;
-  const double dlift = ddx * ddx + ddy * ddy + ddz * ddz;
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-
-  const double p_ab = std::fabs(aexbey) + std::fabs(bexaey);
-  const double p_bc = std::fabs(bexcey) + std::fabs(cexbey);
-  const double p_cd = std::fabs(cexdey) + std::fabs(dexcey);
-  const double p_da = std::fabs(dexaey) + std::fabs(aexdey);
-  const double p_ac = std::fabs(aexcey) + std::fabs(cexaey);
-  const double p_bd = std::fabs(bexdey) + std::fabs(dexbey);
-  const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz), dz = std::fabs(ddz);
-  const double permanent =
-      (p_cd * bz + p_bd * cz + p_bc * dz) * alift + (p_da * cz + p_ac * dz + p_cd * az) * blift +
-      (p_ab * dz + p_bd * az + p_da * bz) * clift + (p_bc * az + p_ac * bz + p_ab * cz) * dlift;
-  const double errbound = bounds::kInsphereA * permanent;
-  if (det > errbound || -det > errbound) return {-sign_of(det), Stage::A};
-  const StagedSign s = insphere_adapt(a, b, c, d, e, dif, permanent);
-  return {-s.sign, s.stage};
+StagedSign AdaptiveKernel::insphere_adapt(const Point3& a, const Point3& b, const Point3& c,
+                                          const Point3& d, const Point3& e, double permanent) {
+  const Differences dif{a.x - e.x, a.y - e.y, a.z - e.z, b.x - e.x, b.y - e.y, b.z - e.z,
+                        c.x - e.x, c.y - e.y, c.z - e.z, d.x - e.x, d.y - e.y, d.z - e.z};
+  const StagedSign s = insphere_adapt_shewchuk(a, b, c, d, e, dif, permanent);
+  return {-s.sign, s.stage};  // dtlab's sign is the negation of Shewchuk's
 }
 
 StagedSign AdaptiveKernel::incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,

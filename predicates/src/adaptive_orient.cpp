@@ -11,15 +11,12 @@ namespace {
 using detail::add;
 using detail::Exp;
 using detail::scale;
+using detail::sign_of;
 using expansion::two_diff_tail;
 
-int sign_of(double v) {
-  return (v > 0.0) - (v < 0.0);
-}
-
 // Stages B, C and D of Shewchuk's orient3d, his sign: det[a - d; b - d; c - d].
-StagedSign orient3d_adapt(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                          double permanent) {
+StagedSign orient3d_adapt_shewchuk(const Point3& a, const Point3& b, const Point3& c,
+                                   const Point3& d, double permanent) {
   const double adx = a.x - d.x;
   const double bdx = b.x - d.x;
   const double cdx = c.x - d.x;
@@ -69,34 +66,10 @@ StagedSign orient3d_adapt(const Point3& a, const Point3& b, const Point3& c, con
 
 }  // namespace
 
-StagedSign AdaptiveKernel::orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
-                                           const Point3& d) {
-  const double adx = a.x - d.x;
-  const double bdx = b.x - d.x;
-  const double cdx = c.x - d.x;
-  const double ady = a.y - d.y;
-  const double bdy = b.y - d.y;
-  const double cdy = c.y - d.y;
-  const double adz = a.z - d.z;
-  const double bdz = b.z - d.z;
-  const double cdz = c.z - d.z;
-
-  const double bdxcdy = bdx * cdy;
-  const double cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady;
-  const double adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy;
-  const double bdxady = bdx * ady;
-
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-  const double errbound = bounds::kOrient3dA * permanent;
-  // dtlab's sign is the negation of Shewchuk's (see kernels.hpp).
-  if (det > errbound || -det > errbound) return {-sign_of(det), Stage::A};
-  const StagedSign s = orient3d_adapt(a, b, c, d, permanent);
-  return {-s.sign, s.stage};
+StagedSign AdaptiveKernel::orient3d_adapt(const Point3& a, const Point3& b, const Point3& c,
+                                          const Point3& d, double permanent) {
+  const StagedSign s = orient3d_adapt_shewchuk(a, b, c, d, permanent);
+  return {-s.sign, s.stage};  // dtlab's sign is the negation of Shewchuk's
 }
 
 StagedSign AdaptiveKernel::orient3d_centroid_staged(const Point3& a, const Point3& b,

@@ -3,20 +3,8 @@
 #include "dtlab/predicates/kernels.hpp"
 
 namespace dtlab::predicates {
-namespace {
-int sign_of(double v) {
-  return (v > 0.0) - (v < 0.0);
-}
-}  // namespace
 
-int FastKernel::orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  const double adx = a.x - d.x, ady = a.y - d.y, adz = a.z - d.z;
-  const double bdx = b.x - d.x, bdy = b.y - d.y, bdz = b.z - d.z;
-  const double cdx = c.x - d.x, cdy = c.y - d.y, cdz = c.z - d.z;
-  const double det =
-      adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-  return -sign_of(det);  // dtlab's sign is the negation of Shewchuk's
-}
+using detail::sign_of;
 
 int FastKernel::orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
                                   const Tetrahedron4& v) {
@@ -29,29 +17,6 @@ int FastKernel::orient3d_centroid(const Point3& a, const Point3& b, const Point3
            cdz * (adx * bdy - bdx * ady);
   }
   return -sign_of(sum);
-}
-
-int FastKernel::insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                         const Point3& e) {
-  const double adx = a.x - e.x, ady = a.y - e.y, adz = a.z - e.z;
-  const double bdx = b.x - e.x, bdy = b.y - e.y, bdz = b.z - e.z;
-  const double cdx = c.x - e.x, cdy = c.y - e.y, cdz = c.z - e.z;
-  const double ddx = d.x - e.x, ddy = d.y - e.y, ddz = d.z - e.z;
-  const double ab = adx * bdy - bdx * ady;
-  const double bc = bdx * cdy - cdx * bdy;
-  const double cd = cdx * ddy - ddx * cdy;
-  const double da = ddx * ady - adx * ddy;
-  const double ac = adx * cdy - cdx * ady;
-  const double bd = bdx * ddy - ddx * bdy;
-  const double abc = adz * bc - bdz * ac + cdz * ab;
-  const double bcd = bdz * cd - cdz * bd + ddz * bc;
-  const double cda = cdz * da + ddz * ac + adz * cd;
-  const double dab = ddz * ab + adz * bd + bdz * da;
-  const double alift = adx * adx + ady * ady + adz * adz;
-  const double blift = bdx * bdx + bdy * bdy + bdz * bdz;
-  const double clift = cdx * cdx + cdy * cdy + cdz * cdz;
-  const double dlift = ddx * ddx + ddy * ddy + ddz * ddz;
-  return -sign_of((dlift * abc - clift * dab) + (blift * cda - alift * bcd));
 }
 
 int FastKernel::orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {

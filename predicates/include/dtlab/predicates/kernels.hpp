@@ -23,6 +23,8 @@
 #include <array>
 #include <cstdint>
 
+#include "dtlab/predicates/detail/float_determinants.hpp"
+#include "dtlab/predicates/error_bounds.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::predicates {
@@ -46,9 +48,13 @@ struct FastKernel {
   static constexpr const char* kName = "fast";
   static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
                                const Tetrahedron4& v);
-  static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+  static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+    return -detail::sign_of(detail::orient3d_terms(a, b, c, d).det);  // dtlab sign = -Shewchuk's
+  }
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                      const Point3& e);
+                      const Point3& e) {
+    return -detail::sign_of(detail::insphere_terms(a, b, c, d, e).det);
+  }
   static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop);
   static int incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                              int drop);
@@ -58,10 +64,26 @@ struct FastKernel {
 // every input within the valid range (valid_range.hpp); thread safe, no global state.
 struct AdaptiveKernel {
   static constexpr const char* kName = "adaptive";
+  // Stage A inline; stages B, C and D out of line (adaptive_orient.cpp, adaptive_insphere.cpp).
   static StagedSign orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
-                                    const Point3& d);
+                                    const Point3& d) {
+    const detail::DeterminantTerms t = detail::orient3d_terms(a, b, c, d);
+    const double errbound = bounds::kOrient3dA * t.permanent;
+    if (t.det > errbound || -t.det > errbound) return {-detail::sign_of(t.det), Stage::A};
+    return orient3d_adapt(a, b, c, d, t.permanent);
+  }
   static StagedSign insphere_staged(const Point3& a, const Point3& b, const Point3& c,
-                                    const Point3& d, const Point3& e);
+                                    const Point3& d, const Point3& e) {
+    const detail::DeterminantTerms t = detail::insphere_terms(a, b, c, d, e);
+    const double errbound = bounds::kInsphereA * t.permanent;
+    if (t.det > errbound || -t.det > errbound) return {-detail::sign_of(t.det), Stage::A};
+    return insphere_adapt(a, b, c, d, e, t.permanent);
+  }
+  // Stages B, C and D, with dtlab's sign; `permanent` from stage A.
+  static StagedSign orient3d_adapt(const Point3& a, const Point3& b, const Point3& c,
+                                   const Point3& d, double permanent);
+  static StagedSign insphere_adapt(const Point3& a, const Point3& b, const Point3& c,
+                                   const Point3& d, const Point3& e, double permanent);
   static StagedSign orient2d_staged(const Point3& a, const Point3& b, const Point3& c, int drop);
   static StagedSign incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
                                            const Point3& d, int drop);
