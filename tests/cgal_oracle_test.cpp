@@ -3,8 +3,9 @@
 // match CGAL's (both use a lexicographic symbolic perturbation, so the sets are compared too and
 // the agreement is printed).
 #include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <gtest/gtest.h>
 
@@ -21,7 +22,8 @@ using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Epick>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Epick, Tds>;
-using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+// Plain exact rationals (not the lazy kernel, whose expression DAG grows with every addition).
+using ExactKernel = CGAL::Simple_cartesian<CGAL::Exact_rational>;
 using predicates::Point3;
 
 std::vector<io::Tetrahedron> sorted_set(std::vector<io::Tetrahedron> tets) {
@@ -44,10 +46,10 @@ std::vector<io::Tetrahedron> cgal_delaunay(const std::vector<Point3>& pts) {
   return out;
 }
 
-Epeck::FT total_volume(const std::vector<Point3>& pts, const std::vector<io::Tetrahedron>& tets) {
-  Epeck::FT sum = 0;
+ExactKernel::FT total_volume(const std::vector<Point3>& pts, const std::vector<io::Tetrahedron>& tets) {
+  ExactKernel::FT sum = 0;
   for (const auto& t : tets) {
-    auto p = [&](std::uint32_t i) { return Epeck::Point_3(pts[i].x, pts[i].y, pts[i].z); };
+    auto p = [&](std::uint32_t i) { return ExactKernel::Point_3(pts[i].x, pts[i].y, pts[i].z); };
     sum += CGAL::volume(p(t[0]), p(t[1]), p(t[2]), p(t[3]));
   }
   return sum;
