@@ -63,16 +63,19 @@ int run_info(const std::string& input, std::uint64_t seed) {
 }
 
 int run_triangulate(const TriangulateArgs& args) {
-  if (args.method != "sequential") {
-    throw std::invalid_argument("--method " + args.method +
-                                " is not available yet (only sequential)");
+  if (args.options.method == engine::Method::Sequential && args.threads != 1) {
+    throw std::invalid_argument("the sequential method runs on one thread (--threads 1)");
   }
-  if (args.threads != 1) throw std::invalid_argument("the sequential method runs on one thread");
+  if (args.threads < 1 || args.threads > 1024) {
+    throw std::invalid_argument("--threads must be in [1, 1024]");
+  }
   if (!args.output.empty() && !ends_with(args.output, ".ele") && !ends_with(args.output, ".vtu")) {
     throw std::invalid_argument(args.output + ": output must end in .ele or .vtu");
   }
   const auto points = load_input(args.input, args.options.seed);
-  const engine::Triangulation result = engine::triangulate(points, args.options);
+  engine::TriangulateOptions options = args.options;
+  options.threads = args.threads;
+  const engine::Triangulation result = engine::triangulate(points, options);
 
   std::optional<engine::ValidationReport> report;
   if (args.validate) report = engine::validate(points, result.tetrahedra);
@@ -88,7 +91,8 @@ int run_triangulate(const TriangulateArgs& args) {
     }
   }
 
-  std::string json = engine::stats_json(result.stats, args.options, args.method, args.threads);
+  const std::string method = engine::to_string(args.options.method);
+  std::string json = engine::stats_json(result.stats, options, method, args.threads);
   if (report) {
     json.pop_back();  // '}'
     while (!json.empty() && (json.back() == '\n' || json.back() == ' ')) json.pop_back();
@@ -117,7 +121,7 @@ int run_triangulate(const TriangulateArgs& args) {
         static_cast<unsigned long long>(s.abandoned_insertions),
         static_cast<unsigned long long>(s.tetrahedra), s.seconds.total,
         engine::to_string(args.options.kernel), engine::to_string(args.options.bounding),
-        args.method.c_str(), static_cast<unsigned long long>(args.options.seed));
+        method.c_str(), static_cast<unsigned long long>(args.options.seed));
     std::printf("  time: location %.3f s, subdivision %.3f s, legalization %.3f s, other %.3f s\n",
                 s.seconds.location, s.seconds.subdivision, s.seconds.legalization, s.seconds.other);
     std::printf(

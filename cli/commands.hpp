@@ -12,7 +12,6 @@ struct TriangulateArgs {
   std::string input;
   std::string output;
   std::string stats;
-  std::string method = "sequential";
   int threads = 1;
   bool validate = false;
   engine::TriangulateOptions options;

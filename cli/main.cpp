@@ -40,8 +40,25 @@ int main(int argc, char** argv) {
   tri->add_option("INPUT", targs.input, "point file or generator spec")->required();
   tri->add_option("--predicates", targs.options.kernel, "fast | adaptive | exact")
       ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
-  tri->add_option("--method", targs.method, "lock method (sequential)");
+  const std::map<std::string, dtlab::engine::Method> methods{
+      {"sequential", dtlab::engine::Method::Sequential},
+      {"pessimistic", dtlab::engine::Method::Pessimistic},
+      {"optimistic-detect", dtlab::engine::Method::OptimisticDetect},
+      {"optimistic-prevent", dtlab::engine::Method::OptimisticPrevent},
+      {"batch", dtlab::engine::Method::Batch}};
+  const std::map<std::string, dtlab::engine::Distribution> distributions{
+      {"static", dtlab::engine::Distribution::Static},
+      {"dynamic", dtlab::engine::Distribution::Dynamic},
+      {"strips", dtlab::engine::Distribution::Strips},
+      {"blocks", dtlab::engine::Distribution::Blocks}};
+  tri->add_option("--method", targs.options.method,
+                  "sequential | pessimistic | optimistic-detect | optimistic-prevent | batch")
+      ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case));
   tri->add_option("--threads", targs.threads, "worker threads");
+  tri->add_option("--distribution", targs.options.distribution,
+                  "static | dynamic | strips | blocks")
+      ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
+  tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
   std::string location = "dag";
   tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")

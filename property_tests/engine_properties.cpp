@@ -18,23 +18,32 @@ namespace {
 
 using engine::KernelKind;
 
+using engine::Method;
+
 struct Configuration {
   KernelKind kernel;
-  std::string method;
+  Method method;
   int threads;
 };
 
 std::string name(const Configuration& c) {
-  return std::string(engine::to_string(c.kernel)) + "/" + c.method + "/" +
+  return std::string(engine::to_string(c.kernel)) + "/" + engine::to_string(c.method) + "/" +
          std::to_string(c.threads);
 }
 
+// kernel x method x threads. The parallel methods run with random delays while locks are held.
 const std::vector<Configuration>& configurations() {
-  static const std::vector<Configuration> all{
-      {KernelKind::Adaptive, "sequential", 1},
-      {KernelKind::Exact, "sequential", 1},
-      {KernelKind::Fast, "sequential", 1},
-  };
+  static const std::vector<Configuration> all = [] {
+    std::vector<Configuration> v{{KernelKind::Adaptive, Method::Sequential, 1},
+                                 {KernelKind::Exact, Method::Sequential, 1},
+                                 {KernelKind::Fast, Method::Sequential, 1}};
+    for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
+                           Method::Batch}) {
+      for (const int threads : {1, 2, 4}) v.push_back({KernelKind::Adaptive, m, threads});
+    }
+    v.push_back({KernelKind::Exact, Method::OptimisticDetect, 2});
+    return v;
+  }();
   return all;
 }
 
@@ -60,6 +69,9 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   engine::TriangulateOptions options;
   options.kernel = config.kernel;
   options.seed = seed;
+  options.method = config.method;
+  options.threads = config.threads;
+  options.stress = config.method != Method::Sequential;
   if (!has_tetrahedralization(c.points)) {
     RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
     return;

@@ -18,28 +18,45 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/predicates/perturbation.hpp"
+#include "shared_mesh.hpp"
 
 namespace dtlab::engine {
 
-template <class K>
+// Sync is the synchronization policy of the lock methods (NoSync for the sequential engine): it
+// is asked before a tetrahedron is read for change or written, and told about every write, so
+// that one insertion kernel serves every method.
+template <class K, class Sync = NoSync>
 class IncrementalDelaunay {
  public:
-  enum class Outcome { Inserted, Duplicate, Abandoned };
+  // GaveUp: the policy refused a lock (deadlock detected or prevented); everything was undone.
+  enum class Outcome { Inserted, Duplicate, Abandoned, GaveUp };
 
+  // The sequential engine: owns its mesh.
   IncrementalDelaunay(const std::vector<Point3>& points, const TriangulateOptions& options,
                       TriangulationStats& stats)
-      : points_(points), options_(options), stats_(stats) {}
+      : owned_(std::make_unique<SharedMesh>(points)),
+        mesh_(*owned_),
+        options_(options),
+        stats_(stats),
+        sync_(&own_sync_) {}
+
+  // One inserting thread of a parallel method, on a shared mesh.
+  IncrementalDelaunay(SharedMesh& mesh, const TriangulateOptions& options,
+                      TriangulationStats& stats, Sync& sync)
+      : mesh_(mesh), options_(options), stats_(stats), sync_(&sync) {}
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {
-    const Point3 &pa = points_[a], &pb = points_[b], &pc = points_[c], &pd = points_[d];
-    first_ = {pa, pb, pc, pd};
+    const Point3 &pa = mesh_.points[a], &pb = mesh_.points[b], &pc = mesh_.points[c],
+                 &pd = mesh_.points[d];
+    mesh_.first = {pa, pb, pc, pd};
     int o = K::orient3d(pa, pb, pc, pd);
     if (o == 0) throw TriangulationError("the first tetrahedron is flat under this kernel");
     if (o < 0) std::swap(a, b);
@@ -47,12 +64,12 @@ class IncrementalDelaunay {
     // (checked exactly): one orient3d instead of four. Otherwise O stays the symbolic centroid.
     const Point3 rounded{(pa.x + pb.x + pc.x + pd.x) / 4, (pa.y + pb.y + pc.y + pd.y) / 4,
                          (pa.z + pb.z + pc.z + pd.z) / 4};
-    const Point3 &qa = points_[a], &qb = points_[b];
-    origin_is_point_ = predicates::ExactKernel::orient3d(rounded, qb, pc, pd) > 0 &&
-                       predicates::ExactKernel::orient3d(qa, rounded, pc, pd) > 0 &&
-                       predicates::ExactKernel::orient3d(qa, qb, rounded, pd) > 0 &&
-                       predicates::ExactKernel::orient3d(qa, qb, pc, rounded) > 0;
-    origin_ = rounded;
+    const Point3 &qa = mesh_.points[a], &qb = mesh_.points[b];
+    mesh_.origin_is_point = predicates::ExactKernel::orient3d(rounded, qb, pc, pd) > 0 &&
+                            predicates::ExactKernel::orient3d(qa, rounded, pc, pd) > 0 &&
+                            predicates::ExactKernel::orient3d(qa, qb, rounded, pd) > 0 &&
+                            predicates::ExactKernel::orient3d(qa, qb, pc, rounded) > 0;
+    mesh_.origin = rounded;
     const std::array<VertexId, 4> first{a, b, c, d};
     scratch_new_.clear();
     scratch_new_.push_back(first);
@@ -64,60 +81,79 @@ class IncrementalDelaunay {
     scratch_old_.clear();
     scratch_parent_.assign(scratch_new_.size(), -1);
     scratch_source_.assign(scratch_new_.size(), {kNoTet, 0});
-    if (!replace()) throw std::logic_error("dtlab: the first tetrahedron does not close up");
-    roots_ = scratch_created_;
+    if (replace() != Replaced::Done) {
+      throw std::logic_error("dtlab: the first tetrahedron does not close up");
+    }
+    sync_->commit();
+    mesh_.roots = scratch_created_;
   }
 
   Outcome insert(VertexId p) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     std::array<int, 4> o{};
-    const TetId t = locate(p, o);
+    TetId t = locate(p, o);
+    if constexpr (Sync::kLocks) {
+      // Lock the leaf; if another thread replaced it meanwhile, descend again from it.
+      for (int tries = 0; t != kNoTet; ++tries) {
+        if (!sync_->acquire(t)) return give_up();
+        if (mesh_.tets[t].alive.load(std::memory_order_acquire)) break;
+        sync_->rollback();
+        if (tries > 1000) return give_up();
+        t = locate(p, o);
+      }
+    }
     const auto t1 = Clock::now();
     stats_.seconds.location += std::chrono::duration<double>(t1 - t0).count();
-    if (t == kNoTet) return Outcome::Abandoned;
+    if (t == kNoTet) {
+      // With other threads rolling back under the descent, try the point again later.
+      if constexpr (Sync::kLocks) return give_up();
+      return Outcome::Abandoned;
+    }
 
     const Outcome split = subdivide(t, p, o);
     const auto t2 = Clock::now();
     stats_.seconds.subdivision += std::chrono::duration<double>(t2 - t1).count();
-    if (split != Outcome::Inserted) return split;
+    if (split == Outcome::GaveUp) return give_up();
+    if (split != Outcome::Inserted) {
+      sync_->commit();
+      return split;
+    }
 
-    const bool complete = legalize(p);
+    const Outcome legal = legalize(p);
     stats_.seconds.legalization += std::chrono::duration<double>(Clock::now() - t2).count();
-    return complete ? Outcome::Inserted : Outcome::Abandoned;
+    if (legal == Outcome::GaveUp) return give_up();
+    sync_->commit();
+    return legal;
   }
 
-  // Live finite tetrahedra whose vertices are all below `vertex_limit` (so not auxiliary). Each
-  // set of duplicate points is named by its lowest input index, whichever of them was inserted,
-  // so that the output does not depend on the insertion order.
+  // Continues a location that another thread started (the batch method's hint): descends from
+  // `start`, which must be a node that contains p, then inserts.
+  void set_location_hint(TetId hint) { hint_ = hint; }
+
   std::vector<Tetrahedron> finite_tetrahedra(VertexId vertex_limit) const {
-    std::vector<VertexId> representative;
-    if (!duplicates_.empty()) {
-      representative.resize(points_.size());
-      for (std::size_t i = 0; i < representative.size(); ++i)
-        representative[i] = static_cast<VertexId>(i);
-      for (const auto& [duplicate, vertex] : duplicates_) {
-        representative[vertex] = std::min(representative[vertex], duplicate);
-      }
-    }
-    std::vector<Tetrahedron> out;
-    const std::size_t n = tets_.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Tet& t = tets_[static_cast<TetId>(i)];
-      if (!t.alive.load(std::memory_order_acquire) || t.is_infinite()) continue;
-      if (t.vertex[0] >= vertex_limit || t.vertex[1] >= vertex_limit ||
-          t.vertex[2] >= vertex_limit || t.vertex[3] >= vertex_limit) {
-        continue;
-      }
-      out.push_back(t.vertex);
-      if (!representative.empty()) {
-        for (auto& v : out.back()) v = representative[v];
-      }
-    }
-    return out;
+    return mesh_.finite_tetrahedra(vertex_limit, duplicates_);
+  }
+  [[nodiscard]] const std::vector<std::pair<VertexId, VertexId>>& duplicates() const {
+    return duplicates_;
   }
 
-  [[nodiscard]] std::uint64_t dag_nodes() const { return tets_.size(); }
+  // Lock-free DAG descent only (the batch method's locating threads, the pessimistic method's
+  // unsynchronized part): a node that contains p, a leaf when nobody changes the mesh meanwhile.
+  TetId locate_only(VertexId p) {
+    std::array<int, 4> o{};
+    return locate(p, o);
+  }
+
+ private:
+  Outcome give_up() {
+    sync_->rollback();
+    stack_.clear();
+    return Outcome::GaveUp;
+  }
+
+ public:
+  [[nodiscard]] std::uint64_t dag_nodes() const { return mesh_.tets.size(); }
   [[nodiscard]] std::uint64_t predicate_calls() const { return predicate_calls_; }
   [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
 
@@ -125,7 +161,7 @@ class IncrementalDelaunay {
   using Quad = std::array<VertexId, 4>;
 
   // Only finite vertices are looked up: the infinite vertex never reaches a point lookup.
-  const Point3& point(VertexId v) const { return points_[v]; }
+  const Point3& point(VertexId v) const { return mesh_.points[v]; }
 
   int orient(const Quad& q) {
     ++predicate_calls_;
@@ -135,9 +171,9 @@ class IncrementalDelaunay {
     // orient(q) = -orient(q with inf -> O); move O to the last slot (a swap: one more sign).
     Quad r = q;
     std::swap(r[static_cast<std::size_t>(inf)], r[3]);
-    const int s = origin_is_point_
-                      ? K::orient3d(point(r[0]), point(r[1]), point(r[2]), origin_)
-                      : K::orient3d_centroid(point(r[0]), point(r[1]), point(r[2]), first_);
+    const int s = mesh_.origin_is_point
+                      ? K::orient3d(point(r[0]), point(r[1]), point(r[2]), mesh_.origin)
+                      : K::orient3d_centroid(point(r[0]), point(r[1]), point(r[2]), mesh_.first);
     return inf == 3 ? -s : s;
   }
 
@@ -167,7 +203,7 @@ class IncrementalDelaunay {
 
   // p inside or on the boundary of t; `o` receives the four orientations.
   bool contains(TetId t, VertexId p, std::array<int, 4>& o) {
-    const Tet& tet = tets_[t];
+    const Tet& tet = mesh_.tets[t];
     for (int i = 0; i < 4; ++i) {
       o[static_cast<std::size_t>(i)] = orient_replaced(tet, i, p);
       if (o[static_cast<std::size_t>(i)] < 0) return false;
@@ -175,33 +211,56 @@ class IncrementalDelaunay {
     return true;
   }
 
-  // Descends the history DAG from the roots to the live tetrahedron that contains p.
+  // Descends the history DAG from the roots (or from a batch hint) to the live tetrahedron that
+  // contains p. With other threads writing, a node can be retired by a rollback under the reader
+  // (dead, no children) or a leaf can turn out not to contain p: the descent then restarts.
   TetId locate(VertexId p, std::array<int, 4>& o) {
-    TetId t = kNoTet;
-    for (const TetId r : roots_) {
-      if (contains(r, p, o)) {
-        t = r;
-        break;
+    TetId start = hint_;
+    hint_ = kNoTet;
+    for (int attempt = 0; attempt < 64; ++attempt) {
+      bool retry = false;
+      const TetId t = descend(p, o, start, retry);
+      if (!retry) return t;
+      start = kNoTet;
+    }
+    return kNoTet;
+  }
+
+  TetId descend(VertexId p, std::array<int, 4>& o, TetId start, bool& retry) {
+    TetId t = start;
+    bool tested = false;  // whether `o` holds t's orientations
+    if (t == kNoTet) {
+      for (const TetId r : mesh_.roots) {
+        if (contains(r, p, o)) {
+          t = r;
+          tested = true;
+          break;
+        }
       }
     }
     std::uint64_t steps = 0;
-    bool tested = true;  // whether `o` holds t's orientations
-    while (t != kNoTet && !tets_[t].alive.load(std::memory_order_acquire)) {
+    while (t != kNoTet && !mesh_.tets[t].alive.load(std::memory_order_acquire)) {
       if (++steps > options_.max_location_steps) return kNoTet;
-      const Tet& node = tets_[t];
+      // One snapshot of the children: a rollback of another thread may reset them meanwhile.
+      const Tet& node = mesh_.tets[t];
+      std::array<TetId, 4> children{};
       int count = 0;
-      while (count < 4 && node.child[static_cast<std::size_t>(count)].load(
-                              std::memory_order_acquire) != kNoTet) {
+      for (std::size_t k = 0; k < 4; ++k) {
+        children[k] = node.child[k].load(std::memory_order_acquire);
+        if (children[k] == kNoTet) break;
         ++count;
       }
+      if (count == 0) {  // retired by another thread's rollback
+        retry = true;
+        return kNoTet;
+      }
       // The children cover their parent: when all but the last fail, p is in the last one
-      // (verified at the leaf, which only an inexact kernel can fail).
-      TetId next = node.child[static_cast<std::size_t>(count - 1)].load(std::memory_order_acquire);
+      // (verified at the leaf).
+      TetId next = children[static_cast<std::size_t>(count - 1)];
       tested = false;
       for (int k = 0; k + 1 < count; ++k) {
-        const TetId c = node.child[static_cast<std::size_t>(k)].load(std::memory_order_acquire);
-        if (contains(c, p, o)) {
-          next = c;
+        if (contains(children[static_cast<std::size_t>(k)], p, o)) {
+          next = children[static_cast<std::size_t>(k)];
           tested = true;
           break;
         }
@@ -209,14 +268,18 @@ class IncrementalDelaunay {
       t = next;
     }
     location_steps_ += steps;
-    if (t != kNoTet && !tested && !contains(t, p, o)) return kNoTet;
+    if (t != kNoTet && !tested && !contains(t, p, o)) {
+      // An inexact kernel's contradiction, or (with threads) a rollback that raced the descent.
+      retry = Sync::kLocks;
+      return kNoTet;
+    }
     return t;
   }
 
   // Adds to scratch_new_ tetrahedron t's copy with the vertex at `position` replaced by v. Its
   // face `position` is t's face `position`: replace() links it without searching.
   void push_replaced(TetId t, int position, VertexId v, int parent) {
-    Quad q = tets_[t].vertex;
+    Quad q = mesh_.tets[t].vertex;
     q[static_cast<std::size_t>(position)] = v;
     scratch_new_.push_back(q);
     scratch_parent_.push_back(parent);
@@ -235,8 +298,9 @@ class IncrementalDelaunay {
       for (int i = 0; i < 4; ++i) push_replaced(t, i, p, 0);
     } else if (zeros == 1) {
       const int i0 = static_cast<int>(std::find(o.begin(), o.end(), 0) - o.begin());
-      const FaceRef across = tets_[t].neighbor[static_cast<std::size_t>(i0)];
+      const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(i0)];
       const TetId t2 = ref_tet(across);
+      if (!sync_->acquire(t2)) return Outcome::GaveUp;
       scratch_old_ = {t, t2};
       for (int i = 0; i < 4; ++i) {
         if (i != i0) push_replaced(t, i, p, 0);
@@ -248,19 +312,21 @@ class IncrementalDelaunay {
       for (int i = 0; i < 4; ++i) {
         if (o[static_cast<std::size_t>(i)] != 0) edge[static_cast<std::size_t>(k++)] = i;
       }
-      const VertexId a = tets_[t].vertex[static_cast<std::size_t>(edge[0])];
-      const VertexId b = tets_[t].vertex[static_cast<std::size_t>(edge[1])];
-      if (!collect_edge_ring(t, a, b)) return Outcome::Abandoned;
+      const VertexId a = mesh_.tets[t].vertex[static_cast<std::size_t>(edge[0])];
+      const VertexId b = mesh_.tets[t].vertex[static_cast<std::size_t>(edge[1])];
+      const Ring ring = collect_edge_ring(t, a, b);
+      if (ring == Ring::GaveUp) return Outcome::GaveUp;
+      if (ring == Ring::Broken) return Outcome::Abandoned;
       for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
-        const Tet& ring_tet = tets_[scratch_old_[r]];
+        const Tet& ring_tet = mesh_.tets[scratch_old_[r]];
         push_replaced(scratch_old_[r], ring_tet.index_of(a), p, static_cast<int>(r));
         push_replaced(scratch_old_[r], ring_tet.index_of(b), p, static_cast<int>(r));
       }
     } else if (zeros == 3) {
       const int m = static_cast<int>(
           std::find_if(o.begin(), o.end(), [](int s) { return s != 0; }) - o.begin());
-      const VertexId v = tets_[t].vertex[static_cast<std::size_t>(m)];
-      if (v != kInfiniteVertex && points_[v] == points_[p]) {
+      const VertexId v = mesh_.tets[t].vertex[static_cast<std::size_t>(m)];
+      if (v != kInfiniteVertex && mesh_.points[v] == mesh_.points[p]) {
         duplicates_.push_back({p, v});
         return Outcome::Duplicate;
       }
@@ -268,19 +334,25 @@ class IncrementalDelaunay {
     } else {
       return Outcome::Abandoned;
     }
-    if (!replace()) return Outcome::Abandoned;
+    const Replaced done = replace();
+    if (done == Replaced::GaveUp) return Outcome::GaveUp;
+    if (done == Replaced::Impossible) return Outcome::Abandoned;
     stack_.assign(scratch_created_.begin(), scratch_created_.end());
     return Outcome::Inserted;
   }
 
-  // All tetrahedra around edge ab, starting from t, into scratch_old_.
-  bool collect_edge_ring(TetId t, VertexId a, VertexId b) {
+  enum class Ring { Complete, Broken, GaveUp };
+
+  // All tetrahedra around edge ab, starting from t (locked), into scratch_old_, each locked
+  // before its neighbours are read.
+  Ring collect_edge_ring(TetId t, VertexId a, VertexId b) {
     scratch_old_.clear();
     TetId current = t;
     TetId previous = kNoTet;
     for (std::size_t guard = 0; guard < 100000; ++guard) {
+      if (!sync_->acquire(current)) return Ring::GaveUp;
       scratch_old_.push_back(current);
-      const Tet& tet = tets_[current];
+      const Tet& tet = mesh_.tets[current];
       TetId next = kNoTet;
       for (int i = 0; i < 4; ++i) {
         const VertexId v = tet.vertex[static_cast<std::size_t>(i)];
@@ -293,29 +365,33 @@ class IncrementalDelaunay {
       }
       previous = current;
       current = next;
-      if (current == t) return true;
-      if (current == kNoTet) return false;
+      if (current == t) return Ring::Complete;
+      if (current == kNoTet) return Ring::Broken;
     }
-    return false;
+    return Ring::Broken;
   }
 
-  // Legalizes the faces opposite p of the tetrahedra on stack_; false when the flip bound was hit.
-  bool legalize(VertexId p) {
+  enum class Flip { Done, NotApplied, GaveUp };
+
+  // Legalizes the faces opposite p of the tetrahedra on stack_: Inserted, Abandoned when the flip
+  // bound was hit, GaveUp when the policy refused a lock.
+  Outcome legalize(VertexId p) {
     std::uint64_t flips = 0;
     while (!stack_.empty()) {
       const TetId t = stack_.back();
       stack_.pop_back();
-      const Tet& tet = tets_[t];
+      const Tet& tet = mesh_.tets[t];
       if (!tet.alive.load(std::memory_order_acquire)) continue;
       const int ip = tet.index_of(p);
       const FaceRef across = tet.neighbor[static_cast<std::size_t>(ip)];
       const TetId t2 = ref_tet(across);
-      const VertexId y = tets_[t2].vertex[static_cast<std::size_t>(ref_face(across))];
-      if (!in_conflict(tets_[t2], p)) continue;
+      const VertexId y = mesh_.tets[t2].vertex[static_cast<std::size_t>(ref_face(across))];
+      if (!in_conflict(mesh_.tets[t2], p)) continue;
       if (++flips > options_.max_flips_per_insertion) {
         stack_.clear();
-        return false;
+        return Outcome::Abandoned;
       }
+      if (!sync_->acquire(t2)) return Outcome::GaveUp;
       // Where does segment p-y pass face F = t minus p? o[m] is the orientation of t with F's
       // vertex m replaced by y: all positive, through F's interior; one negative, outside the
       // edge opposite m; one zero, through that edge (p, y and the edge coplanar).
@@ -335,73 +411,89 @@ class IncrementalDelaunay {
           ++zeros;
         }
       }
+      Flip result = Flip::NotApplied;
       if (negatives == 0 && zeros == 0) {
-        flip23(t, t2, ip, y);
+        result = flip23(t, t2, ip, y);
       } else if (negatives == 1 && zeros == 0) {
-        flip32(t, t2, ip, negative, y);
+        result = flip32(t, t2, ip, negative, y);
       } else if (zeros == 1 && negatives == 0) {
-        flip44(t, t2, ip, zero, y);
+        result = flip44(t, t2, ip, zero, y);
       }
-      // Otherwise the face is not flippable now; a later flip removes it (Joe 1991).
+      // NotApplied: the face is not flippable now; a later flip removes it (Joe 1991).
+      if (result == Flip::GaveUp) return Outcome::GaveUp;
     }
-    return true;
+    return Outcome::Inserted;
   }
 
   // S23: abcp + abcy -> three tetrahedra around the new edge py.
-  void flip23(TetId t, TetId t2, int ip, VertexId y) {
+  Flip flip23(TetId t, TetId t2, int ip, VertexId y) {
     begin_flip({t, t2});
     for (int m = 0; m < 4; ++m) {
       if (m != ip) push_replaced(t, m, y, -1);
     }
-    if (finish_flip()) ++stats_.flips.s23;
+    const Flip result = finish_flip();
+    if (result == Flip::Done) ++stats_.flips.s23;
+    return result;
   }
 
   // S32: the reflex edge opposite F's vertex `m` has exactly three tetrahedra (t, t2 and the one
   // across t's face m, which must contain y); they become two around the face (p, y, F[m]).
-  void flip32(TetId t, TetId t2, int ip, int m, VertexId y) {
-    const FaceRef across = tets_[t].neighbor[static_cast<std::size_t>(m)];
+  Flip flip32(TetId t, TetId t2, int ip, int m, VertexId y) {
+    const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(m)];
     const TetId t3 = ref_tet(across);
-    if (tets_[t3].vertex[static_cast<std::size_t>(ref_face(across))] != y) return;
+    if (mesh_.tets[t3].vertex[static_cast<std::size_t>(ref_face(across))] != y) {
+      return Flip::NotApplied;
+    }
+    if (!sync_->acquire(t3)) return Flip::GaveUp;
     begin_flip({t, t2, t3});
     for (int j = 0; j < 4; ++j) {
       if (j != ip && j != m) push_replaced(t, j, y, -1);
     }
-    if (finish_flip()) ++stats_.flips.s32;
+    const Flip result = finish_flip();
+    if (result == Flip::Done) ++stats_.flips.s32;
+    return result;
   }
 
   // S44 (S22 on the hull): p, y and the edge opposite F's vertex `m` are coplanar and the edge has
   // exactly four tetrahedra; the edge is replaced by py.
-  void flip44(TetId t, TetId t2, int ip, int m, VertexId y) {
-    const Tet& tet = tets_[t];
+  Flip flip44(TetId t, TetId t2, int ip, int m, VertexId y) {
+    const Tet& tet = mesh_.tets[t];
     const VertexId vm = tet.vertex[static_cast<std::size_t>(m)];
     const FaceRef across3 = tet.neighbor[static_cast<std::size_t>(m)];
     const TetId t3 = ref_tet(across3);
-    const VertexId w = tets_[t3].vertex[static_cast<std::size_t>(ref_face(across3))];
-    const int m2 = tets_[t2].index_of(vm);
-    const FaceRef across4 = tets_[t2].neighbor[static_cast<std::size_t>(m2)];
+    const VertexId w = mesh_.tets[t3].vertex[static_cast<std::size_t>(ref_face(across3))];
+    const int m2 = mesh_.tets[t2].index_of(vm);
+    const FaceRef across4 = mesh_.tets[t2].neighbor[static_cast<std::size_t>(m2)];
     const TetId t4 = ref_tet(across4);
-    if (tets_[t4].vertex[static_cast<std::size_t>(ref_face(across4))] != w) return;
+    if (mesh_.tets[t4].vertex[static_cast<std::size_t>(ref_face(across4))] != w) {
+      return Flip::NotApplied;
+    }
     std::array<int, 2> edge{};
     int k = 0;
     for (int j = 0; j < 4; ++j) {
       if (j != ip && j != m) edge[static_cast<std::size_t>(k++)] = j;
     }
     // The two new tetrahedra on w's side must be positively oriented too.
-    const Tet& tet3 = tets_[t3];
+    const Tet& tet3 = mesh_.tets[t3];
     const int e0 = tet3.index_of(tet.vertex[static_cast<std::size_t>(edge[0])]);
     const int e1 = tet3.index_of(tet.vertex[static_cast<std::size_t>(edge[1])]);
-    if (orient_replaced(tet3, e0, y) <= 0 || orient_replaced(tet3, e1, y) <= 0) return;
+    if (orient_replaced(tet3, e0, y) <= 0 || orient_replaced(tet3, e1, y) <= 0) {
+      return Flip::NotApplied;
+    }
+    if (!sync_->acquire(t3) || !sync_->acquire(t4)) return Flip::GaveUp;
     begin_flip({t, t2, t3, t4});
     push_replaced(t, edge[0], y, -1);
     push_replaced(t, edge[1], y, -1);
     push_replaced(t3, e0, y, -1);
     push_replaced(t3, e1, y, -1);
-    if (!finish_flip()) return;
+    const Flip result = finish_flip();
+    if (result != Flip::Done) return result;
     if (vm == kInfiniteVertex || w == kInfiniteVertex) {
       ++stats_.flips.s22;
     } else {
       ++stats_.flips.s44;
     }
+    return Flip::Done;
   }
 
   void begin_flip(std::initializer_list<TetId> old) {
@@ -410,11 +502,14 @@ class IncrementalDelaunay {
     scratch_parent_.clear();
     scratch_source_.clear();
   }
-  // False when the flip cannot be applied (inexact kernel only); the mesh is then unchanged.
-  bool finish_flip() {
-    if (!replace()) return false;
+  // NotApplied when the flip's faces do not close up (inexact kernel only); the mesh is then
+  // unchanged.
+  Flip finish_flip() {
+    const Replaced done = replace();
+    if (done == Replaced::GaveUp) return Flip::GaveUp;
+    if (done == Replaced::Impossible) return Flip::NotApplied;
     stack_.insert(stack_.end(), scratch_created_.begin(), scratch_created_.end());
-    return true;
+    return Flip::Done;
   }
 
   // A face's vertex set as two integers (sorted ids): cheap to compare.
@@ -451,7 +546,9 @@ class IncrementalDelaunay {
   // Every face is matched before anything is written: when the new tetrahedra do not close up
   // (only possible with an inexact kernel's contradictory signs) nothing changes and the result
   // is false. The new ids land in scratch_created_.
-  bool replace() {
+  enum class Replaced { Done, Impossible, GaveUp };
+
+  Replaced replace() {
     auto is_old = [&](TetId t) {
       return std::find(scratch_old_.begin(), scratch_old_.end(), t) != scratch_old_.end();
     };
@@ -461,7 +558,7 @@ class IncrementalDelaunay {
     for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
       const auto [source, position] = scratch_source_[j];
       if (source == kNoTet) continue;
-      const FaceRef outside = tets_[source].neighbor[static_cast<std::size_t>(position)];
+      const FaceRef outside = mesh_.tets[source].neighbor[static_cast<std::size_t>(position)];
       if (is_old(ref_tet(outside))) continue;
       matched_[4 * j + static_cast<std::size_t>(position)] = {outside, false, true};
       claimed_.push_back(face_ref(source, position));
@@ -469,7 +566,7 @@ class IncrementalDelaunay {
     // The other faces of the region's boundary, seen from outside.
     open_faces_.clear();
     for (const TetId o : scratch_old_) {
-      const Tet& tet = tets_[o];
+      const Tet& tet = mesh_.tets[o];
       for (int f = 0; f < 4; ++f) {
         const FaceRef outside = tet.neighbor[static_cast<std::size_t>(f)];
         if (is_old(ref_tet(outside))) continue;
@@ -495,18 +592,32 @@ class IncrementalDelaunay {
         open_faces_.pop_back();
       }
     }
-    if (!open_faces_.empty()) return false;
+    if (!open_faces_.empty()) return Replaced::Impossible;
+
+    // Every tetrahedron written below is locked first: the outside neighbours get new back
+    // references (the old ones are locked already), and the undo log sees each before its first
+    // write.
+    if constexpr (Sync::kLocks) {
+      for (const FaceMatch& m : matched_) {
+        if (!m.is_new && !sync_->acquire(ref_tet(m.ref))) return Replaced::GaveUp;
+      }
+      for (const FaceMatch& m : matched_) {
+        if (!m.is_new) sync_->before_write(ref_tet(m.ref));
+      }
+      for (const TetId o : scratch_old_) sync_->before_write(o);
+    }
 
     scratch_created_.clear();
     for (const Quad& q : scratch_new_) {
-      const TetId id = tets_.allocate();
-      Tet& tet = tets_[id];
+      const TetId id = mesh_.tets.allocate();
+      Tet& tet = mesh_.tets[id];
       tet.vertex = q;
       for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
+      sync_->created(id);  // locked by this thread before anyone can reach it
       scratch_created_.push_back(id);
     }
     for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
-      Tet& tet = tets_[scratch_created_[j]];
+      Tet& tet = mesh_.tets[scratch_created_[j]];
       for (int f = 0; f < 4; ++f) {
         const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
         if (m.is_new) {
@@ -514,14 +625,14 @@ class IncrementalDelaunay {
               face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref));
         } else {
           tet.neighbor[static_cast<std::size_t>(f)] = m.ref;
-          tets_[ref_tet(m.ref)].neighbor[static_cast<std::size_t>(ref_face(m.ref))] =
+          mesh_.tets[ref_tet(m.ref)].neighbor[static_cast<std::size_t>(ref_face(m.ref))] =
               face_ref(scratch_created_[j], f);
         }
       }
     }
     // History: children first (release), then the old tetrahedra die, then the new ones live.
     for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
-      Tet& old = tets_[scratch_old_[r]];
+      Tet& old = mesh_.tets[scratch_old_[r]];
       int slot = 0;
       for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
         if (scratch_parent_[j] == -1 || scratch_parent_[j] == static_cast<int>(r)) {
@@ -531,18 +642,18 @@ class IncrementalDelaunay {
       }
       old.alive.store(false, std::memory_order_release);
     }
-    for (const TetId id : scratch_created_) tets_[id].alive.store(true, std::memory_order_release);
-    return true;
+    for (const TetId id : scratch_created_)
+      mesh_.tets[id].alive.store(true, std::memory_order_release);
+    return Replaced::Done;
   }
 
-  const std::vector<Point3>& points_;
+  std::unique_ptr<SharedMesh> owned_;  // the sequential engine's own mesh
+  SharedMesh& mesh_;
   const TriangulateOptions& options_;
   TriangulationStats& stats_;
-  predicates::Tetrahedron4 first_{};  // O is the centroid of these four points...
-  Point3 origin_{0, 0, 0};            // ...or this point, strictly inside them, when
-  bool origin_is_point_ = false;      // origin_is_point_
-  TetStore tets_;
-  std::vector<TetId> roots_;
+  NoSync own_sync_;
+  Sync* sync_;
+  TetId hint_ = kNoTet;
   std::uint64_t predicate_calls_ = 0;
   std::uint64_t location_steps_ = 0;
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)

@@ -17,6 +17,7 @@
 #include "dtlab/predicates/kernels.hpp"
 #include "dtlab/predicates/valid_range.hpp"
 #include "incremental_delaunay.hpp"
+#include "parallel_methods.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -80,6 +81,7 @@ std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t inpu
       case IncrementalDelaunay<K>::Outcome::Duplicate:
         ++stats.duplicates;
         break;
+      case IncrementalDelaunay<K>::Outcome::GaveUp:  // no policy gives up in the sequential engine
       case IncrementalDelaunay<K>::Outcome::Abandoned:
         ++stats.abandoned_insertions;
         break;
@@ -92,15 +94,26 @@ std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t inpu
 }
 
 template <class K>
+std::vector<Tetrahedron> run_method(const std::vector<Point3>& points, std::size_t input_count,
+                                    const std::vector<std::uint32_t>& order,
+                                    const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                    const TriangulateOptions& options, TriangulationStats& stats) {
+  if (options.method == Method::Sequential) {
+    return run<K>(points, input_count, order, first, skip_first, options, stats);
+  }
+  return run_parallel<K>(points, input_count, order, first, skip_first, options, stats);
+}
+
+template <class K>
 std::vector<Tetrahedron> run_kernel(const std::vector<Point3>& points, std::size_t input_count,
                                     const std::vector<std::uint32_t>& order,
                                     const std::array<std::uint32_t, 4>& first, bool skip_first,
                                     const TriangulateOptions& options, TriangulationStats& stats) {
   if (options.audit) {
-    return run<predicates::Audited<K>>(points, input_count, order, first, skip_first, options,
-                                       stats);
+    return run_method<predicates::Audited<K>>(points, input_count, order, first, skip_first,
+                                              options, stats);
   }
-  return run<K>(points, input_count, order, first, skip_first, options, stats);
+  return run_method<K>(points, input_count, order, first, skip_first, options, stats);
 }
 
 std::vector<Tetrahedron> dispatch(const std::vector<Point3>& points, std::size_t input_count,
@@ -146,6 +159,34 @@ const char* to_string(Bounding b) {
 }
 const char* to_string(Location) {
   return "dag";
+}
+const char* to_string(Method m) {
+  switch (m) {
+    case Method::Sequential:
+      return "sequential";
+    case Method::Pessimistic:
+      return "pessimistic";
+    case Method::OptimisticDetect:
+      return "optimistic-detect";
+    case Method::OptimisticPrevent:
+      return "optimistic-prevent";
+    case Method::Batch:
+      return "batch";
+  }
+  return "?";
+}
+const char* to_string(Distribution d) {
+  switch (d) {
+    case Distribution::Static:
+      return "static";
+    case Distribution::Dynamic:
+      return "dynamic";
+    case Distribution::Strips:
+      return "strips";
+    case Distribution::Blocks:
+      return "blocks";
+  }
+  return "?";
 }
 
 Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOptions& options) {
@@ -269,8 +310,35 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   }
   j["peak_rss_bytes"] = s.peak_rss_bytes;
   j["scale_exponent"] = s.scale_exponent;
+  if (!s.threads.empty()) {
+    std::uint64_t waits = 0, deadlocks = 0, give_ups = 0, raises = 0;
+    nlohmann::ordered_json per_thread = nlohmann::ordered_json::array();
+    for (const ThreadStats& t : s.threads) {
+      waits += t.waits;
+      deadlocks += t.deadlocks;
+      give_ups += t.give_ups;
+      raises += t.priority_raises;
+      per_thread.push_back({{"inserted", t.inserted},
+                            {"duplicates", t.duplicates},
+                            {"abandoned", t.abandoned},
+                            {"waits", t.waits},
+                            {"deadlocks", t.deadlocks},
+                            {"give_ups", t.give_ups},
+                            {"priority_raises", t.priority_raises}});
+    }
+    j["waits"] = waits;
+    j["deadlocks"] = deadlocks;
+    j["give_ups"] = give_ups;
+    j["priority_raises"] = raises;
+    if (options.method == Method::Batch) {
+      j["queue_full_waits"] = s.queue_full_waits;
+      j["queue_empty_waits"] = s.queue_empty_waits;
+    }
+    j["per_thread"] = per_thread;
+  }
   j["method"] = method;
   j["threads"] = threads;
+  j["distribution"] = to_string(options.distribution);
   j["predicates"] = to_string(options.kernel);
   j["location"] = to_string(options.location);
   j["bounding"] = to_string(options.bounding);

@@ -15,12 +15,18 @@ using io::Tetrahedron;
 using predicates::Point3;
 
 enum class KernelKind { Fast, Adaptive, Exact };
+// The lock methods of the paper (Sect. 5) and the batch method it described (docs/design.md).
+enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent, Batch };
+// How the permuted points are split among the threads (paper Sect. 6).
+enum class Distribution { Static, Dynamic, Strips, Blocks };
 enum class Bounding { Infinite, AuxTet };
 enum class Location { Dag };
 
 const char* to_string(KernelKind k);
 const char* to_string(Bounding b);
 const char* to_string(Location l);
+const char* to_string(Method m);
+const char* to_string(Distribution d);
 
 struct TriangulateOptions {
   KernelKind kernel = KernelKind::Adaptive;
@@ -34,6 +40,13 @@ struct TriangulateOptions {
   bool audit = false;
   // Progress bar on stderr (the CLI turns it on only for a terminal).
   bool progress = false;
+  Method method = Method::Sequential;
+  int threads = 1;
+  Distribution distribution = Distribution::Static;
+  // Random short delays while locks are held, to shake out races (tests).
+  bool stress = false;
+  // A run with no finished insertion for this long is stopped and reported as a failure.
+  double watchdog_seconds = 120.0;
 };
 
 struct FlipCounts {
@@ -51,6 +64,17 @@ struct PhaseSeconds {
   double other = 0.0;
 };
 
+// Counters of one inserting thread of a parallel method.
+struct ThreadStats {
+  std::uint64_t inserted = 0;
+  std::uint64_t duplicates = 0;
+  std::uint64_t abandoned = 0;
+  std::uint64_t waits = 0;            // lock requests that found the lock taken and waited
+  std::uint64_t deadlocks = 0;        // waits that would have closed a cycle (detect)
+  std::uint64_t give_ups = 0;         // insertions undone and retried
+  std::uint64_t priority_raises = 0;  // prevent
+};
+
 struct TriangulationStats {
   std::uint64_t points = 0;
   std::uint64_t inserted = 0;
@@ -64,7 +88,10 @@ struct TriangulationStats {
   std::uint64_t abandoned_insertions = 0;
   std::int64_t hull_tetrahedra_lost = -1;  // aux-tet only; -1 when not measured
   std::uint64_t peak_rss_bytes = 0;
-  std::int32_t scale_exponent = 0;  // inputs were multiplied by 2^scale_exponent (exact)
+  std::int32_t scale_exponent = 0;      // inputs were multiplied by 2^scale_exponent (exact)
+  std::vector<ThreadStats> threads;     // parallel methods: one entry per inserting thread
+  std::uint64_t queue_full_waits = 0;   // batch: locating threads blocked on a full queue
+  std::uint64_t queue_empty_waits = 0;  // batch: the inserting thread found the queue empty
 };
 
 struct Triangulation {

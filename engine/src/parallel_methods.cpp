@@ -1,0 +1,380 @@
+// Drivers of the parallel methods: point distribution, threads, the watchdog, stats.
+#include "parallel_methods.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <unordered_map>
+
+#include "dtlab/predicates/audit.hpp"
+#include "dtlab/predicates/kernels.hpp"
+#include "incremental_delaunay.hpp"
+#include "optimistic_sync.hpp"
+
+namespace dtlab::engine {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Splits `ids` (kept in their order) into `parts` groups of equal size by the coordinate `axis`
+// (median splits), recursively alternating axes for blocks.
+void split_by_median(const std::vector<Point3>& points, std::vector<std::uint32_t> ids, int parts,
+                     int axis, int axes, std::vector<std::vector<std::uint32_t>>& out) {
+  if (parts <= 1) {
+    out.push_back(std::move(ids));
+    return;
+  }
+  const int left_parts = parts / 2;
+  std::vector<std::uint32_t> sorted = ids;
+  const std::size_t cut =
+      ids.size() * static_cast<std::size_t>(left_parts) / static_cast<std::size_t>(parts);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(cut), sorted.end(),
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     const double ca = predicates::coordinate(points[a], axis);
+                     const double cb = predicates::coordinate(points[b], axis);
+                     return ca < cb || (ca == cb && a < b);
+                   });
+  // Membership by rank, so that each side keeps the random order of `ids`.
+  std::vector<char> left(points.size(), 0);
+  for (std::size_t i = 0; i < cut; ++i) left[sorted[i]] = 1;
+  std::vector<std::uint32_t> a;
+  std::vector<std::uint32_t> b;
+  for (const std::uint32_t v : ids) (left[v] ? a : b).push_back(v);
+  const int next_axis = (axis + 1) % axes;
+  split_by_median(points, std::move(a), left_parts, next_axis, axes, out);
+  split_by_median(points, std::move(b), parts - left_parts, next_axis, axes, out);
+}
+
+// Stops a run in which no insertion finished for too long: a lost wake-up or an undetected
+// deadlock becomes a reported failure, not a hang.
+class Watchdog {
+ public:
+  Watchdog(double seconds, std::atomic<std::uint64_t>& progress, std::atomic<bool>& stop)
+      : seconds_(seconds), progress_(progress), stop_(stop), thread_([this] { watch(); }) {}
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+  ~Watchdog() {
+    {
+      std::lock_guard<std::mutex> guard(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  [[nodiscard]] bool fired() const { return fired_.load(); }
+
+ private:
+  void watch() {
+    std::uint64_t last = progress_.load();
+    auto last_change = Clock::now();
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!done_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(100));
+      const std::uint64_t now = progress_.load();
+      if (now != last) {
+        last = now;
+        last_change = Clock::now();
+      } else if (std::chrono::duration<double>(Clock::now() - last_change).count() > seconds_) {
+        fired_ = true;
+        stop_ = true;
+        return;
+      }
+    }
+  }
+  double seconds_;
+  std::atomic<std::uint64_t>& progress_;
+  std::atomic<bool>& stop_;
+  std::atomic<bool> fired_{false};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+void add_phase_times(TriangulationStats& total, const TriangulationStats& part) {
+  total.seconds.location += part.seconds.location;
+  total.seconds.subdivision += part.seconds.subdivision;
+  total.seconds.legalization += part.seconds.legalization;
+  total.flips.s23 += part.flips.s23;
+  total.flips.s32 += part.flips.s32;
+  total.flips.s22 += part.flips.s22;
+  total.flips.s44 += part.flips.s44;
+}
+
+// Points not yet inserted by a thread: its own list (static, strips, blocks) or the shared
+// index (dynamic), plus the points it gave up, retried after the rest.
+class WorkSource {
+ public:
+  WorkSource(const std::vector<std::uint32_t>* own, std::atomic<std::size_t>* shared_index,
+             const std::vector<std::uint32_t>* shared)
+      : own_(own), shared_index_(shared_index), shared_(shared) {}
+  std::optional<std::uint32_t> next() {
+    if (own_ != nullptr && position_ < own_->size()) return (*own_)[position_++];
+    if (shared_index_ != nullptr) {
+      const std::size_t i = shared_index_->fetch_add(1, std::memory_order_relaxed);
+      if (i < shared_->size()) return (*shared_)[i];
+    }
+    if (retry_position_ < retry_.size()) return retry_[retry_position_++];
+    return std::nullopt;
+  }
+  // Queues v again; false when it was given up too often (then the caller abandons it).
+  bool retry_later(std::uint32_t v) {
+    if (++attempts_[v] > kMaxAttempts) return false;
+    retry_.push_back(v);
+    return true;
+  }
+  static constexpr int kMaxAttempts = 100000;
+
+ private:
+  const std::vector<std::uint32_t>* own_;
+  std::size_t position_ = 0;
+  std::atomic<std::size_t>* shared_index_;
+  const std::vector<std::uint32_t>* shared_;
+  std::vector<std::uint32_t> retry_;
+  std::size_t retry_position_ = 0;
+  std::unordered_map<std::uint32_t, int> attempts_;
+};
+
+template <class Dt>
+void count_outcome(typename Dt::Outcome outcome, ThreadStats& t) {
+  switch (outcome) {
+    case Dt::Outcome::Inserted:
+      ++t.inserted;
+      break;
+    case Dt::Outcome::Duplicate:
+      ++t.duplicates;
+      break;
+    case Dt::Outcome::Abandoned:
+      ++t.abandoned;
+      break;
+    case Dt::Outcome::GaveUp:
+      ++t.give_ups;
+      break;
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<std::uint32_t>> distribute(const std::vector<Point3>& points,
+                                                   const std::vector<std::uint32_t>& order,
+                                                   Distribution distribution, int threads) {
+  std::vector<std::vector<std::uint32_t>> parts;
+  if (distribution == Distribution::Strips || distribution == Distribution::Blocks) {
+    split_by_median(points, order, threads, 0, distribution == Distribution::Strips ? 1 : 3, parts);
+    return parts;
+  }
+  // Static: contiguous pieces of the random permutation.
+  const std::size_t n = order.size();
+  for (int i = 0; i < threads; ++i) {
+    const std::size_t begin = n * static_cast<std::size_t>(i) / static_cast<std::size_t>(threads);
+    const std::size_t end = n * static_cast<std::size_t>(i + 1) / static_cast<std::size_t>(threads);
+    parts.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                       order.begin() + static_cast<std::ptrdiff_t>(end));
+  }
+  return parts;
+}
+
+template <class K>
+std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::size_t input_count,
+                                      const std::vector<std::uint32_t>& full_order,
+                                      const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                      const TriangulateOptions& options,
+                                      TriangulationStats& stats) {
+  const int threads = std::max(1, options.threads);
+  SharedMesh mesh(points);
+  TriangulationStats start_stats;
+  NoSync no_sync;
+  IncrementalDelaunay<K, NoSync>(mesh, options, start_stats, no_sync)
+      .start(first[0], first[1], first[2], first[3]);
+  std::vector<std::uint32_t> order;
+  order.reserve(full_order.size());
+  for (const std::uint32_t v : full_order) {
+    if (skip_first && (v == first[0] || v == first[1] || v == first[2] || v == first[3])) continue;
+    order.push_back(v);
+  }
+  if (skip_first) stats.inserted += 4;
+
+  stats.threads.assign(static_cast<std::size_t>(threads), ThreadStats{});
+  std::vector<TriangulationStats> thread_stats(static_cast<std::size_t>(threads));
+  std::vector<std::vector<std::pair<VertexId, VertexId>>> duplicates(
+      static_cast<std::size_t>(threads));
+  std::vector<std::uint64_t> predicate_calls(static_cast<std::size_t>(threads), 0);
+  std::vector<std::uint64_t> location_steps(static_cast<std::size_t>(threads), 0);
+  std::atomic<std::uint64_t> progress{0};
+  LockTable table(threads);
+  std::atomic<std::size_t> shared_index{0};
+  const bool dynamic = options.distribution == Distribution::Dynamic;
+  const auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
+                             : distribute(points, order, options.distribution, threads);
+  std::mutex global;  // pessimistic: the one critical section
+
+  auto finish_thread = [&](int i, const auto& dt) {
+    duplicates[static_cast<std::size_t>(i)] = dt.duplicates();
+    predicate_calls[static_cast<std::size_t>(i)] = dt.predicate_calls();
+    location_steps[static_cast<std::size_t>(i)] = dt.location_steps();
+  };
+
+  auto worker = [&](int i) {
+    const auto index = static_cast<std::size_t>(i);
+    ThreadStats& counters = stats.threads[index];
+    WorkSource work(dynamic ? nullptr : &parts[index], dynamic ? &shared_index : nullptr, &order);
+    if (options.method == Method::Pessimistic) {
+      IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[index], no_sync);
+      while (const auto v = work.next()) {
+        if (table.stop.load(std::memory_order_relaxed)) break;
+        // Lock-free descent; the leaf-level part, subdivision and legalization in one section.
+        dt.set_location_hint(dt.locate_only(*v));
+        std::lock_guard<std::mutex> guard(global);
+        count_outcome<decltype(dt)>(dt.insert(*v), counters);
+        progress.fetch_add(1, std::memory_order_relaxed);
+      }
+      finish_thread(i, dt);
+      return;
+    }
+    const auto mode = options.method == Method::OptimisticPrevent ? OptimisticSync::Mode::Prevent
+                                                                  : OptimisticSync::Mode::Detect;
+    OptimisticSync sync(mesh, table, static_cast<std::uint32_t>(i + 1), mode, counters,
+                        options.stress);
+    IncrementalDelaunay<K, OptimisticSync> dt(mesh, options, thread_stats[index], sync);
+    int consecutive_give_ups = 0;
+    while (const auto v = work.next()) {
+      if (table.stop.load(std::memory_order_relaxed)) break;
+      const auto outcome = dt.insert(*v);
+      count_outcome<decltype(dt)>(outcome, counters);
+      if (outcome == decltype(dt)::Outcome::GaveUp) {
+        if (!work.retry_later(*v)) {
+          ++counters.abandoned;
+          progress.fetch_add(1, std::memory_order_relaxed);
+        }
+        // Back off before the next attempt: the thread that waited for our locks must get them
+        // before we take them again, or the two can give up against each other forever.
+        const int shift = std::min(consecutive_give_ups++, 10);
+        std::this_thread::sleep_for(std::chrono::microseconds(1 << shift));
+      } else {
+        consecutive_give_ups = 0;
+        progress.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    finish_thread(i, dt);
+  };
+
+  auto batch = [&] {
+    // Locating threads feed a bounded queue with (point, DAG node that contains it); one thread
+    // subdivides and legalizes.
+    const int locators = std::max(1, threads - 1);
+    const std::size_t capacity = 1024;
+    std::deque<std::pair<std::uint32_t, TetId>> queue;
+    std::mutex queue_mutex;
+    std::condition_variable not_full;
+    std::condition_variable not_empty;
+    int active_locators = locators;
+    std::atomic<std::uint64_t> full_waits{0};
+    std::uint64_t empty_waits = 0;
+    const auto locator_parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
+                                       : distribute(points, order, options.distribution, locators);
+    std::vector<std::thread> pool;
+    std::vector<TriangulationStats> locator_stats(static_cast<std::size_t>(locators));
+    for (int i = 0; i < locators; ++i) {
+      pool.emplace_back([&, i] {
+        const auto index = static_cast<std::size_t>(i);
+        IncrementalDelaunay<K, NoSync> dt(mesh, options, locator_stats[index], no_sync);
+        WorkSource work(dynamic ? nullptr : &locator_parts[index],
+                        dynamic ? &shared_index : nullptr, &order);
+        while (const auto v = work.next()) {
+          const TetId hint = dt.locate_only(*v);
+          std::unique_lock<std::mutex> lock(queue_mutex);
+          if (queue.size() >= capacity) {
+            full_waits.fetch_add(1, std::memory_order_relaxed);
+            not_full.wait(lock, [&] { return queue.size() < capacity || table.stop.load(); });
+          }
+          if (table.stop.load()) break;
+          queue.emplace_back(*v, hint);
+          not_empty.notify_one();
+        }
+        std::lock_guard<std::mutex> lock(queue_mutex);
+        --active_locators;
+        not_empty.notify_one();
+      });
+    }
+    IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[0], no_sync);
+    ThreadStats& counters = stats.threads[0];
+    while (true) {
+      std::pair<std::uint32_t, TetId> item;
+      {
+        std::unique_lock<std::mutex> lock(queue_mutex);
+        if (queue.empty() && active_locators > 0) {
+          ++empty_waits;
+          not_empty.wait(
+              lock, [&] { return !queue.empty() || active_locators == 0 || table.stop.load(); });
+        }
+        if (queue.empty() || table.stop.load()) break;
+        item = queue.front();
+        queue.pop_front();
+        not_full.notify_one();
+      }
+      dt.set_location_hint(item.second);
+      count_outcome<decltype(dt)>(dt.insert(item.first), counters);
+      progress.fetch_add(1, std::memory_order_relaxed);
+    }
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex);
+      not_full.notify_all();
+    }
+    for (auto& t : pool) t.join();
+    finish_thread(0, dt);
+    stats.queue_full_waits = full_waits.load();
+    stats.queue_empty_waits = empty_waits;
+    for (const auto& ls : locator_stats) thread_stats[0].seconds.location += ls.seconds.location;
+  };
+
+  {
+    Watchdog watchdog(options.watchdog_seconds, progress, table.stop);
+    if (options.method == Method::Batch) {
+      stats.threads.assign(1, ThreadStats{});
+      batch();
+    } else {
+      std::vector<std::thread> pool;
+      for (int i = 0; i < threads; ++i) pool.emplace_back(worker, i);
+      for (auto& t : pool) t.join();
+    }
+    if (watchdog.fired()) {
+      throw TriangulationError("watchdog: no insertion finished for " +
+                               std::to_string(options.watchdog_seconds) +
+                               " s; the run was stopped (a deadlock or lost wake-up)");
+    }
+  }
+
+  std::vector<std::pair<VertexId, VertexId>> all_duplicates;
+  for (std::size_t i = 0; i < thread_stats.size(); ++i) {
+    add_phase_times(stats, thread_stats[i]);
+    all_duplicates.insert(all_duplicates.end(), duplicates[i].begin(), duplicates[i].end());
+    stats.predicate_calls += predicate_calls[i];
+    stats.location_steps += location_steps[i];
+  }
+  for (const ThreadStats& t : stats.threads) {
+    stats.inserted += t.inserted;
+    stats.duplicates += t.duplicates;
+    stats.abandoned_insertions += t.abandoned;
+  }
+  stats.dag_nodes = mesh.tets.size();
+  return mesh.finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
+}
+
+#define DTLAB_INSTANTIATE(K)                                                      \
+  template std::vector<Tetrahedron> run_parallel<K>(                              \
+      const std::vector<Point3>&, std::size_t, const std::vector<std::uint32_t>&, \
+      const std::array<std::uint32_t, 4>&, bool, const TriangulateOptions&, TriangulationStats&);
+DTLAB_INSTANTIATE(predicates::FastKernel)
+DTLAB_INSTANTIATE(predicates::AdaptiveKernel)
+DTLAB_INSTANTIATE(predicates::ExactKernel)
+DTLAB_INSTANTIATE(predicates::Audited<predicates::FastKernel>)
+DTLAB_INSTANTIATE(predicates::Audited<predicates::AdaptiveKernel>)
+DTLAB_INSTANTIATE(predicates::Audited<predicates::ExactKernel>)
+#undef DTLAB_INSTANTIATE
+
+}  // namespace dtlab::engine

@@ -1,0 +1,25 @@
+#pragma once
+// The lock methods over shared-memory threads (docs/design.md, "Lock methods").
+#include <vector>
+
+#include "dtlab/engine/triangulate.hpp"
+#include "shared_mesh.hpp"
+
+namespace dtlab::engine {
+
+// Inserts `order` (all input ids; the four of `first` already form the first tetrahedron when
+// skip_first) into a mesh built from `points` with options.method on options.threads threads.
+// Returns the finite tetrahedra below `input_count`, fills stats.
+template <class K>
+std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::size_t input_count,
+                                      const std::vector<std::uint32_t>& order,
+                                      const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                      const TriangulateOptions& options, TriangulationStats& stats);
+
+// The points of `order` split among `threads` per the distribution (static, strips, blocks;
+// dynamic is handled by the caller with a shared index). Each part keeps the random order.
+std::vector<std::vector<std::uint32_t>> distribute(const std::vector<Point3>& points,
+                                                   const std::vector<std::uint32_t>& order,
+                                                   Distribution distribution, int threads);
+
+}  // namespace dtlab::engine

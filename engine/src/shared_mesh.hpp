@@ -1,0 +1,69 @@
+#pragma once
+// What all inserting threads share: the points, the tetrahedron store (mesh and DAG), the DAG
+// roots and the interior point O. Written by one thread in start(), read-only afterwards except
+// for the store, whose records follow the locking rules of docs/design.md.
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "dtlab/engine/tet_mesh.hpp"
+#include "dtlab/engine/triangulate.hpp"
+#include "dtlab/predicates/kernels.hpp"
+
+namespace dtlab::engine {
+
+struct SharedMesh {
+  explicit SharedMesh(const std::vector<Point3>& input) : points(input) {}
+
+  const std::vector<Point3>& points;
+  TetStore tets;
+  std::vector<TetId> roots;
+  predicates::Tetrahedron4 first{};  // O is the centroid of these four points...
+  Point3 origin{0, 0, 0};            // ...or this point, strictly inside them, when
+  bool origin_is_point = false;      // origin_is_point
+
+  // Live finite tetrahedra whose vertices are all below `vertex_limit` (so not auxiliary). Each
+  // set of duplicate points is named by its lowest input index, whichever of them was inserted,
+  // so that the output does not depend on the insertion order.
+  std::vector<Tetrahedron> finite_tetrahedra(
+      VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates) const {
+    std::vector<VertexId> representative;
+    if (!duplicates.empty()) {
+      representative.resize(points.size());
+      for (std::size_t i = 0; i < representative.size(); ++i) {
+        representative[i] = static_cast<VertexId>(i);
+      }
+      for (const auto& [duplicate, vertex] : duplicates) {
+        representative[vertex] = std::min(representative[vertex], duplicate);
+      }
+    }
+    std::vector<Tetrahedron> out;
+    const std::size_t n = tets.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Tet& t = tets[static_cast<TetId>(i)];
+      if (!t.alive.load(std::memory_order_acquire) || t.is_infinite()) continue;
+      if (t.vertex[0] >= vertex_limit || t.vertex[1] >= vertex_limit ||
+          t.vertex[2] >= vertex_limit || t.vertex[3] >= vertex_limit) {
+        continue;
+      }
+      out.push_back(t.vertex);
+      if (!representative.empty()) {
+        for (auto& v : out.back()) v = representative[v];
+      }
+    }
+    return out;
+  }
+};
+
+// The sequential engine's synchronization: none. Every hook is an empty inline function, so the
+// sequential build pays nothing for the parallel methods' policy slots.
+struct NoSync {
+  static constexpr bool kLocks = false;
+  bool acquire(TetId /*t*/) { return true; }  // false: give the insertion up
+  void before_write(TetId /*t*/) {}           // undo log entry before the first write to t
+  void created(TetId /*t*/) {}                // a new tetrahedron, owned from birth
+  void commit() {}                            // the insertion is complete: unlock
+  void rollback() {}                          // give up: undo everything, unlock
+};
+
+}  // namespace dtlab::engine
