@@ -66,20 +66,25 @@ Points cluster(std::int64_t n, Random& rng) {
   return p;
 }
 
-Points grid(std::int64_t n, Random& /*rng*/) {
-  const std::int64_t k = grid_side(n);
-  const double h = grid_spacing(k);
+// k x k x k points origin + (i, j, l) * spacing.
+Points cube_grid(std::int64_t k, double origin, double spacing) {
   Points p;
   p.reserve(static_cast<std::size_t>(k * k * k));
   for (std::int64_t i = 0; i < k; ++i) {
     for (std::int64_t j = 0; j < k; ++j) {
       for (std::int64_t l = 0; l < k; ++l) {
-        p.push_back(
-            {static_cast<double>(i) * h, static_cast<double>(j) * h, static_cast<double>(l) * h});
+        p.push_back({origin + static_cast<double>(i) * spacing,
+                     origin + static_cast<double>(j) * spacing,
+                     origin + static_cast<double>(l) * spacing});
       }
     }
   }
   return p;
+}
+
+Points grid(std::int64_t n, Random& /*rng*/) {
+  const std::int64_t k = grid_side(n);
+  return cube_grid(k, 0.0, grid_spacing(k));
 }
 
 Point3 on_sphere(Random& rng, Point3 centre, double radius) {
@@ -200,19 +205,7 @@ Points collinear(std::int64_t n, Random& rng) {
 
 // Integer grid k x k x k offset by 2^30 (exact).
 Points lattice(std::int64_t n, Random& /*rng*/) {
-  const std::int64_t k = grid_side(n);
-  const double offset = std::ldexp(1.0, 30);
-  Points p;
-  p.reserve(static_cast<std::size_t>(k * k * k));
-  for (std::int64_t i = 0; i < k; ++i) {
-    for (std::int64_t j = 0; j < k; ++j) {
-      for (std::int64_t l = 0; l < k; ++l) {
-        p.push_back({offset + static_cast<double>(i), offset + static_cast<double>(j),
-                     offset + static_cast<double>(l)});
-      }
-    }
-  }
-  return p;
+  return cube_grid(grid_side(n), std::ldexp(1.0, 30), 1.0);
 }
 
 Points scaled_uniform(std::int64_t n, Random& rng, double factor) {

@@ -80,16 +80,9 @@ StagedSign AdaptiveKernel::orient3d_centroid_staged(const Point3& a, const Point
   double sum = 0.0;
   double permanents = 0.0;
   for (const Point3& d : v) {
-    const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
-    const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
-    const double adz = a.z - d.z, bdz = b.z - d.z, cdz = c.z - d.z;
-    const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-    const double cdxady = cdx * ady, adxcdy = adx * cdy;
-    const double adxbdy = adx * bdy, bdxady = bdx * ady;
-    sum += adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-    permanents += (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                  (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                  (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+    const detail::DeterminantTerms t = detail::orient3d_terms(a, b, c, d);
+    sum += t.det;
+    permanents += t.permanent;
   }
   const double errbound = (bounds::kOrient3dA + 6.0 * bounds::kEpsilon) * permanents;
   if (sum > errbound || -sum > errbound) return {-sign_of(sum), Stage::A};

@@ -9,13 +9,7 @@ using detail::sign_of;
 int FastKernel::orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
                                   const Tetrahedron4& v) {
   double sum = 0.0;
-  for (const Point3& d : v) {
-    const double adx = a.x - d.x, ady = a.y - d.y, adz = a.z - d.z;
-    const double bdx = b.x - d.x, bdy = b.y - d.y, bdz = b.z - d.z;
-    const double cdx = c.x - d.x, cdy = c.y - d.y, cdz = c.z - d.z;
-    sum += adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
-           cdz * (adx * bdy - bdx * ady);
-  }
+  for (const Point3& d : v) sum += detail::orient3d_terms(a, b, c, d).det;
   return -sign_of(sum);
 }
 
