@@ -3,8 +3,8 @@
 // match CGAL's (both use a lexicographic symbolic perturbation, so the sets are compared too and
 // the agreement is printed).
 #include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_rational.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <gtest/gtest.h>
@@ -46,7 +46,8 @@ std::vector<io::Tetrahedron> cgal_delaunay(const std::vector<Point3>& pts) {
   return out;
 }
 
-ExactKernel::FT total_volume(const std::vector<Point3>& pts, const std::vector<io::Tetrahedron>& tets) {
+ExactKernel::FT total_volume(const std::vector<Point3>& pts,
+                             const std::vector<io::Tetrahedron>& tets) {
   ExactKernel::FT sum = 0;
   for (const auto& t : tets) {
     auto p = [&](std::uint32_t i) { return ExactKernel::Point_3(pts[i].x, pts[i].y, pts[i].z); };
