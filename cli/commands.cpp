@@ -66,6 +66,9 @@ int run_triangulate(const TriangulateArgs& args) {
   if (args.options.method == engine::Method::Sequential && args.threads != 1) {
     throw std::invalid_argument("the sequential method runs on one thread (--threads 1)");
   }
+  if (args.options.repair && args.options.method != engine::Method::Burglary) {
+    throw std::invalid_argument("--repair is the burglary method's post-check (--method burglary)");
+  }
   if (args.threads < 1 || args.threads > 1024) {
     throw std::invalid_argument("--threads must be in [1, 1024]");
   }
@@ -130,15 +133,54 @@ int run_triangulate(const TriangulateArgs& args) {
         static_cast<unsigned long long>(s.flips.s22), static_cast<unsigned long long>(s.flips.s44),
         static_cast<unsigned long long>(s.dag_nodes),
         static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0));
+    if (!s.threads.empty()) {
+      engine::ThreadStats sum;
+      for (const engine::ThreadStats& t : s.threads) {
+        sum.waits += t.waits;
+        sum.deadlocks += t.deadlocks;
+        sum.give_ups += t.give_ups;
+        sum.burglaries += t.burglaries;
+        sum.potential_problems += t.potential_problems;
+        sum.suspicious_tetrahedra += t.suspicious_tetrahedra;
+      }
+      std::printf("  threads %d: waits %llu, deadlocks %llu, give-ups %llu, burglaries %llu, "
+                  "potential problems %llu, suspicious tetrahedra %llu\n",
+                  args.threads, static_cast<unsigned long long>(sum.waits),
+                  static_cast<unsigned long long>(sum.deadlocks),
+                  static_cast<unsigned long long>(sum.give_ups),
+                  static_cast<unsigned long long>(sum.burglaries),
+                  static_cast<unsigned long long>(sum.potential_problems),
+                  static_cast<unsigned long long>(sum.suspicious_tetrahedra));
+    }
+    if (s.post_check.done) {
+      const engine::PostCheck& c = s.post_check;
+      std::printf("  post-check: %llu non-Delaunay faces and %llu reflex boundary edges after the "
+                  "run, mesh consistent: %s",
+                  static_cast<unsigned long long>(c.non_delaunay_faces),
+                  static_cast<unsigned long long>(c.reflex_boundary_edges),
+                  c.mesh_consistent ? "yes" : "no");
+      if (c.repaired) {
+        std::printf("; repair: %llu flips on the marks -> %llu, sweep %llu flips, rebuilt: %s -> "
+                    "%llu",
+                    static_cast<unsigned long long>(c.repair_flips),
+                    static_cast<unsigned long long>(c.non_delaunay_after_marked),
+                    static_cast<unsigned long long>(c.sweep_flips), c.rebuilt ? "yes" : "no",
+                    static_cast<unsigned long long>(c.non_delaunay_after));
+      }
+      std::printf("\n");
+    }
     if (s.hull_tetrahedra_lost >= 0) {
       std::printf("  aux-tet: %lld tetrahedra of the exact convex hull triangulation lost\n",
                   static_cast<long long>(s.hull_tetrahedra_lost));
     }
     if (report) {
-      std::printf("  validation (%s predicates): %s; non-Delaunay faces %llu, consistent: %s\n",
-                  report->kernel.c_str(), report->valid() ? "VALID" : "INVALID",
-                  static_cast<unsigned long long>(report->non_delaunay_faces),
-                  report->consistent() ? "yes" : "no");
+      std::printf(
+          "  validation (%s predicates): %s; non-Delaunay faces %llu, reflex boundary edges %llu, "
+          "consistent: %s, mesh consistent: %s\n",
+          report->kernel.c_str(), report->valid() ? "VALID" : "INVALID",
+          static_cast<unsigned long long>(report->non_delaunay_faces),
+          static_cast<unsigned long long>(report->reflex_boundary_edges),
+          report->consistent() ? "yes" : "no", report->mesh_consistent() ? "yes" : "no");
     }
   }
   return report && !report->valid() ? 1 : 0;

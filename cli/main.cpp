@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
       {"pessimistic", dtlab::engine::Method::Pessimistic},
       {"optimistic-detect", dtlab::engine::Method::OptimisticDetect},
       {"optimistic-prevent", dtlab::engine::Method::OptimisticPrevent},
+      {"burglary", dtlab::engine::Method::Burglary},
       {"batch", dtlab::engine::Method::Batch}};
   const std::map<std::string, dtlab::engine::Distribution> distributions{
       {"static", dtlab::engine::Distribution::Static},
@@ -52,13 +53,15 @@ int main(int argc, char** argv) {
       {"strips", dtlab::engine::Distribution::Strips},
       {"blocks", dtlab::engine::Distribution::Blocks}};
   tri->add_option("--method", targs.options.method,
-                  "sequential | pessimistic | optimistic-detect | optimistic-prevent | batch")
+                  "sequential | pessimistic | optimistic-detect | optimistic-prevent | burglary | batch")
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case));
   tri->add_option("--threads", targs.threads, "worker threads");
   tri->add_option("--distribution", targs.options.distribution,
                   "static | dynamic | strips | blocks")
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
   tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
+  tri->add_flag("--repair", targs.options.repair,
+                "burglary: re-legalize the suspicious tetrahedra after the run (post-check)");
   std::string location = "dag";
   tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")

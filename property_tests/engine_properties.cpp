@@ -38,7 +38,7 @@ const std::vector<Configuration>& configurations() {
                                  {KernelKind::Exact, Method::Sequential, 1},
                                  {KernelKind::Fast, Method::Sequential, 1}};
     for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
-                           Method::Batch}) {
+                           Method::Burglary, Method::Batch}) {
       for (const int threads : {1, 2, 4}) v.push_back({KernelKind::Adaptive, m, threads});
     }
     v.push_back({KernelKind::Exact, Method::OptimisticDetect, 2});
@@ -63,8 +63,9 @@ std::map<std::string, std::pair<int, int>>& fast_failures() {
   return table;
 }
 
-// The generic body: exact kernels must give a consistent Delaunay mesh; the fast kernel must
-// terminate, and the validator must report whatever it got wrong.
+// The generic body: exact kernels must give a consistent Delaunay mesh (burglary: a sound mesh
+// after the run, Delaunay after --repair); the fast kernel must terminate, and the validator must
+// report whatever it got wrong.
 void check_configuration(const Configuration& config, const PointSetCase& c, std::uint64_t seed) {
   engine::TriangulateOptions options;
   options.kernel = config.kernel;
@@ -72,6 +73,7 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   options.method = config.method;
   options.threads = config.threads;
   options.stress = config.method != Method::Sequential;
+  options.repair = config.method == Method::Burglary;
   if (!has_tetrahedralization(c.points)) {
     RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
     return;
@@ -99,6 +101,9 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   const auto result = engine::triangulate(c.points, options);
   const auto report = engine::validate(c.points, result.tetrahedra);
   RC_ASSERT(result.stats.abandoned_insertions == 0u);
+  if (config.method == Method::Burglary && !result.stats.post_check.mesh_consistent) {
+    RC_FAIL(name(config) + ": the mesh was unsound before the repair");
+  }
   if (!report.valid()) RC_FAIL(name(config) + " invalid: " + report.json());
 }
 

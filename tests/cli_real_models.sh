@@ -10,5 +10,5 @@ for f in "$data"/*.ply "$data"/*.xyz "$data"/*.off "$data"/*.xz; do
 done
 for f in dragon_vrip_res4.ply armadillo_cgal26k.off dragon_vrip_res3.xyz; do
   "$dtlab" triangulate "$data/$f" --validate | tail -n1
-  "$dtlab" triangulate "$data/$f" --validate | grep -q VALID
+  "$dtlab" triangulate "$data/$f" --validate | grep -q ': VALID;'
 done

@@ -26,11 +26,13 @@ const Method kParallel[] = {Method::Pessimistic, Method::OptimisticDetect,
                             Method::OptimisticPrevent, Method::Batch};
 
 TEST(ParallelMethods, OneThreadGivesTheSequentialMesh) {
+  // Burglary included: with one thread nobody is ever burgled.
   const auto points = generators::generate("uniform", 2000, 3).points;
   engine::TriangulateOptions sequential;
   sequential.seed = 9;
   const auto reference = engine::triangulate(points, sequential).tetrahedra;
-  for (const Method m : kParallel) {
+  for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
+                         Method::Burglary, Method::Batch}) {
     engine::TriangulateOptions options = sequential;
     options.method = m;
     options.threads = 1;
@@ -61,6 +63,48 @@ TEST(ParallelMethods, ManyThreadsStayValidOnHardFamilies) {
       }
     }
   }
+}
+
+// Burglary may lose the Delaunay property, never the mesh: after the run the mesh is sound (the
+// post-check's validation says so, and the test validates again), and --repair makes it the
+// unique Delaunay tetrahedralization.
+TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
+  const int n = 1500;
+  std::uint64_t burglaries = 0;
+  for (const std::string family :
+       {"uniform", "grid", "sphere", "cospherical", "near-duplicates", "duplicates", "planes"}) {
+    const auto points = generators::generate(family, n, 5).points;
+    const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+    for (const int threads : {2, 4}) {
+      for (const bool repair : {false, true}) {
+        engine::TriangulateOptions options;
+        options.method = Method::Burglary;
+        options.threads = threads;
+        options.stress = true;
+        options.repair = repair;
+        const auto result = engine::triangulate(points, options);
+        const auto report = engine::validate(points, result.tetrahedra);
+        const std::string what = family + " " + std::to_string(threads) + (repair ? " repair" : "");
+        EXPECT_TRUE(report.mesh_consistent()) << what << report.json();
+        EXPECT_TRUE(result.stats.post_check.mesh_consistent) << what;
+        if (!repair) {
+          // The post-check's counts are the validator's counts of the mesh returned.
+          EXPECT_EQ(result.stats.post_check.non_delaunay_faces, report.non_delaunay_faces) << what;
+          EXPECT_EQ(result.stats.post_check.reflex_boundary_edges, report.reflex_boundary_edges)
+              << what;
+        }
+        EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
+        if (repair) {
+          EXPECT_TRUE(report.valid()) << what << report.json();
+          EXPECT_EQ(result.stats.post_check.non_delaunay_after, 0u) << what;
+          EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+        }
+        for (const auto& t : result.stats.threads) burglaries += t.burglaries;
+      }
+    }
+  }
+  // Oversubscribed threads with delays while locks are held: deadlocks do happen.
+  EXPECT_GT(burglaries, 0u);
 }
 
 TEST(ParallelMethods, DistributionsCoverEveryPointOnce) {

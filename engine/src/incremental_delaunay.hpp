@@ -371,60 +371,132 @@ class IncrementalDelaunay {
     return Ring::Broken;
   }
 
-  enum class Flip { Done, NotApplied, GaveUp };
+  // Exhausted: the per-insertion flip bound was hit.
+  enum class Flip { Done, NotApplied, GaveUp, Exhausted };
 
   // Legalizes the faces opposite p of the tetrahedra on stack_: Inserted, Abandoned when the flip
-  // bound was hit, GaveUp when the policy refused a lock.
+  // bound was hit, GaveUp when the policy refused a lock and the insertion must be undone.
   Outcome legalize(VertexId p) {
     std::uint64_t flips = 0;
     while (!stack_.empty()) {
       const TetId t = stack_.back();
       stack_.pop_back();
-      const Tet& tet = mesh_.tets[t];
-      if (!tet.alive.load(std::memory_order_acquire)) continue;
-      const int ip = tet.index_of(p);
-      const FaceRef across = tet.neighbor[static_cast<std::size_t>(ip)];
-      const TetId t2 = ref_tet(across);
-      const VertexId y = mesh_.tets[t2].vertex[static_cast<std::size_t>(ref_face(across))];
-      if (!in_conflict(mesh_.tets[t2], p)) continue;
-      if (++flips > options_.max_flips_per_insertion) {
+      if (!mesh_.tets[t].alive.load(std::memory_order_acquire)) continue;
+      const int ip = mesh_.tets[t].index_of(p);
+      const Flip result = legalize_face(t, ip, flips);
+      if (result == Flip::Exhausted) {
         stack_.clear();
         return Outcome::Abandoned;
       }
-      if (!sync_->acquire(t2)) return Outcome::GaveUp;
-      // Where does segment p-y pass face F = t minus p? o[m] is the orientation of t with F's
-      // vertex m replaced by y: all positive, through F's interior; one negative, outside the
-      // edge opposite m; one zero, through that edge (p, y and the edge coplanar).
-      int negative = -1;
-      int zero = -1;
-      int negatives = 0;
-      int zeros = 0;
-      std::array<int, 4> o{};
-      for (int m = 0; m < 4; ++m) {
-        if (m == ip) continue;
-        o[static_cast<std::size_t>(m)] = orient_replaced(tet, m, y);
-        if (o[static_cast<std::size_t>(m)] < 0) {
-          negative = m;
-          ++negatives;
-        } else if (o[static_cast<std::size_t>(m)] == 0) {
-          zero = m;
-          ++zeros;
-        }
+      if (result != Flip::GaveUp) continue;
+      // A refused lock: detect and prevent undo the insertion; a burglary victim goes on with
+      // face t again when its part of the mesh survived the burglar, and else stops here.
+      const Resume resume = sync_->resume();
+      if (resume == Resume::GiveUp) return Outcome::GaveUp;
+      stack_.push_back(t);
+      if (resume == Resume::Stop) {
+        for (const TetId s : stack_) sync_->mark_suspicious(s);
+        stack_.clear();
       }
-      Flip result = Flip::NotApplied;
-      if (negatives == 0 && zeros == 0) {
-        result = flip23(t, t2, ip, y);
-      } else if (negatives == 1 && zeros == 0) {
-        result = flip32(t, t2, ip, negative, y);
-      } else if (zeros == 1 && negatives == 0) {
-        result = flip44(t, t2, ip, zero, y);
-      }
-      // NotApplied: the face is not flippable now; a later flip removes it (Joe 1991).
-      if (result == Flip::GaveUp) return Outcome::GaveUp;
     }
     return Outcome::Inserted;
   }
 
+  // Face ip of live tetrahedron t (the face opposite its vertex `apex`): flips it when the vertex
+  // across lies strictly inside t's circumsphere and the flip exists; the new tetrahedra go on
+  // stack_. `flips` counts against the per-insertion bound.
+  Flip legalize_face(TetId t, int ip, std::uint64_t& flips) {
+    const Tet& tet = mesh_.tets[t];
+    const VertexId apex = tet.vertex[static_cast<std::size_t>(ip)];
+    const FaceRef across = tet.neighbor[static_cast<std::size_t>(ip)];
+    const TetId t2 = ref_tet(across);
+    const VertexId y = mesh_.tets[t2].vertex[static_cast<std::size_t>(ref_face(across))];
+    if (!in_conflict(mesh_.tets[t2], apex)) return Flip::NotApplied;
+    if (++flips > options_.max_flips_per_insertion) return Flip::Exhausted;
+    if (!sync_->acquire(t2)) return Flip::GaveUp;
+    // Where does segment apex-y pass face F = t minus apex? o[m] is the orientation of t with
+    // F's vertex m replaced by y: all positive, through F's interior; one negative, outside the
+    // edge opposite m; one zero, through that edge (apex, y and the edge coplanar).
+    int negative = -1;
+    int zero = -1;
+    int negatives = 0;
+    int zeros = 0;
+    std::array<int, 4> o{};
+    for (int m = 0; m < 4; ++m) {
+      if (m == ip) continue;
+      o[static_cast<std::size_t>(m)] = orient_replaced(tet, m, y);
+      if (o[static_cast<std::size_t>(m)] < 0) {
+        negative = m;
+        ++negatives;
+      } else if (o[static_cast<std::size_t>(m)] == 0) {
+        zero = m;
+        ++zeros;
+      }
+    }
+    if (negatives == 0 && zeros == 0) return flip23(t, t2, ip, y);
+    if (negatives == 1 && zeros == 0) return flip32(t, t2, ip, negative, y);
+    if (zeros == 1 && negatives == 0) return flip44(t, t2, ip, zero, y);
+    // Not flippable now; a later flip removes it (Joe 1991).
+    return Flip::NotApplied;
+  }
+
+ public:
+  // Burglary's sequential post-check: legalizes every face of the live tetrahedra at or below
+  // the marked DAG nodes (all live tetrahedra when `everything`) by Lawson flips, following the
+  // faces of each new tetrahedron. Lawson flips in 3D can get stuck at a non-flippable face; the
+  // caller checks the result with the validator. Returns the number of flips.
+  std::uint64_t relegalize(const std::vector<TetId>& marks, bool everything) {
+    std::vector<std::pair<TetId, int>> faces;
+    std::vector<char> seen(mesh_.tets.size(), 0);
+    std::vector<TetId> pending;
+    if (everything) {
+      for (TetId t = 0; t < mesh_.tets.size(); ++t) pending.push_back(t);
+    } else {
+      pending = marks;
+    }
+    while (!pending.empty()) {  // down the DAG to the live tetrahedra
+      const TetId t = pending.back();
+      pending.pop_back();
+      if (t >= seen.size() || seen[t] != 0) continue;
+      seen[t] = 1;
+      const Tet& tet = mesh_.tets[t];
+      if (tet.alive.load(std::memory_order_acquire)) {
+        for (int f = 0; f < 4; ++f) faces.emplace_back(t, f);
+        continue;
+      }
+      for (const auto& c : tet.child) {
+        const TetId child = c.load(std::memory_order_acquire);
+        if (child != kNoTet && !everything) pending.push_back(child);
+      }
+    }
+    std::uint64_t flips = 0;
+    // Lawson flips raise no face of the lifted triangulation, so they cannot cycle; the bound
+    // only guards against an inexact kernel.
+    const std::uint64_t bound = 64 * mesh_.tets.size() + 1024;
+    while (!faces.empty() && flips < bound) {
+      auto [t, f] = faces.back();
+      faces.pop_back();
+      const Tet& tet = mesh_.tets[t];
+      if (!tet.alive.load(std::memory_order_acquire)) continue;
+      if (tet.vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
+        // Test the face from the finite side (a face has at most one infinite apex).
+        const FaceRef across = tet.neighbor[static_cast<std::size_t>(f)];
+        t = ref_tet(across);
+        f = ref_face(across);
+      }
+      std::uint64_t count = 0;
+      stack_.clear();
+      if (legalize_face(t, f, count) != Flip::Done) continue;
+      ++flips;
+      for (const TetId created : stack_) {
+        for (int g = 0; g < 4; ++g) faces.emplace_back(created, g);
+      }
+      stack_.clear();
+    }
+    return flips;
+  }
+
+ private:
   // S23: abcp + abcy -> three tetrahedra around the new edge py.
   Flip flip23(TetId t, TetId t2, int ip, VertexId y) {
     begin_flip({t, t2});
@@ -641,6 +713,7 @@ class IncrementalDelaunay {
         }
       }
       old.alive.store(false, std::memory_order_release);
+      sync_->killed(scratch_old_[r]);
     }
     for (const TetId id : scratch_created_)
       mesh_.tets[id].alive.store(true, std::memory_order_release);

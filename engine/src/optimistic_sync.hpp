@@ -3,6 +3,15 @@
 // words taken by compare-and-swap, waiting with deadlock detection (a wait-for cycle check in a
 // short critical section) or deadlock prevention (priorities), and an undo log so that a thread
 // that must not wait gives its insertion up and restores the mesh exactly.
+//
+// Burglary (paper Sect. 5, docs/design.md) keeps no undo log: a thread that detects a deadlock
+// marks its counterpart, who is then parked in acquire() and writes nothing, as burgled and takes
+// its locks (the picklock). The victim releases the rest, waits until the burglar's insertion
+// ends, takes back the tetrahedra it had created and checks that they are all still alive. If
+// they are, its remaining legalization is still valid and goes on; if not, it stops, counts a
+// potential problem and marks the suspicious tetrahedra for the sequential post-check. Every
+// write still happens under a lock its writer holds, so the mesh stays consistent.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -21,11 +30,20 @@ namespace dtlab::engine {
 struct LockTable {
   explicit LockTable(int threads)
       : waiting_for(static_cast<std::size_t>(threads) + 1),
-        priority(static_cast<std::size_t>(threads) + 1) {}
-  // waiting_for[i]: the thread that thread i waits for (0: none). Written and followed under
-  // `cycle` so that the last thread to close a cycle always sees it (no false negatives).
+        priority(static_cast<std::size_t>(threads) + 1),
+        phase(static_cast<std::size_t>(threads) + 1),
+        burgled_in_phase(static_cast<std::size_t>(threads) + 1) {}
+  // waiting_for[i]: the thread that thread i waits for (0: none), or kBurgled | burglar while
+  // thread i is a burglary victim. Registered and followed under `cycle` so that the last thread
+  // to close a cycle always sees it (no false negatives); burglary changes it by compare-and-swap
+  // only, so that "stopped waiting" and "burgled" cannot both win.
   std::vector<std::atomic<std::uint32_t>> waiting_for;
   std::vector<std::atomic<std::uint64_t>> priority;  // prevent: higher wins
+  // Burglary: phase[i] counts the insertions (or parts of one) thread i has ended; a victim waits
+  // until its burglar's phase moves past burgled_in_phase[victim].
+  std::vector<std::atomic<std::uint64_t>> phase;
+  std::vector<std::atomic<std::uint64_t>> burgled_in_phase;
+  static constexpr std::uint32_t kBurgled = 0x8000'0000U;
   std::mutex cycle;
   std::atomic<bool> stop{false};  // watchdog: give everything up
 };
@@ -33,7 +51,7 @@ struct LockTable {
 class OptimisticSync {
  public:
   static constexpr bool kLocks = true;
-  enum class Mode { Detect, Prevent };
+  enum class Mode { Detect, Prevent, Burglary };
 
   OptimisticSync(SharedMesh& mesh, LockTable& table, std::uint32_t self, Mode mode,
                  ThreadStats& stats, bool stress)
@@ -45,7 +63,8 @@ class OptimisticSync {
         stress_(stress),
         rng_(self) {}
 
-  // Takes t's lock; false when the insertion must be given up.
+  // Takes t's lock; false when the insertion must be given up (or, burglary, this thread was
+  // burgled: see resume()).
   bool acquire(TetId t) {
     std::atomic<std::uint32_t>& word = mesh_.tets[t].lock_owner;
     bool waited = false;
@@ -56,12 +75,27 @@ class OptimisticSync {
       if (word.compare_exchange_strong(owner, self_, std::memory_order_acq_rel,
                                        std::memory_order_acquire)) {
         held_.push_back(t);
-        if (waited) table_.waiting_for[self_].store(0, std::memory_order_relaxed);
+        if (waited && !stop_waiting()) return false;  // burgled after all: keep t in held_
         maybe_delay();
         return true;
       }
       if (owner == self_) return true;
-      if (table_.stop.load(std::memory_order_relaxed)) return stop_waiting();
+      if (table_.stop.load(std::memory_order_relaxed)) {
+        stop_waiting();
+        return false;
+      }
+      if (mode_ == Mode::Burglary) {
+        if (burgled()) return false;
+        // The picklock: a victim of this thread holds t.
+        if (table_.waiting_for[owner].load(std::memory_order_acquire) == (LockTable::kBurgled | self_) &&
+            word.compare_exchange_strong(owner, self_, std::memory_order_acq_rel,
+                                         std::memory_order_acquire)) {
+          held_.push_back(t);
+          if (waited && !stop_waiting()) return false;
+          return true;
+        }
+        if (owner == 0) continue;  // released meanwhile: take it normally
+      }
       if (!waited) {
         waited = true;
         ++stats_.waits;
@@ -73,21 +107,26 @@ class OptimisticSync {
         if (theirs > mine || (theirs == mine && owner < self_)) {
           table_.priority[self_].fetch_add(1, std::memory_order_relaxed);
           ++stats_.priority_raises;
-          return stop_waiting();
+          stop_waiting();
+          return false;
         }
       } else if (owner != registered_owner) {
         // (Re-)register only when the owner changes: whoever closes a cycle later sees it.
         registered_owner = owner;
-        if (would_deadlock(owner)) {
+        const Wait wait = register_wait(owner);
+        if (wait == Wait::Deadlock) {
           ++stats_.deadlocks;
-          return false;  // would_deadlock already withdrew the wait
+          return false;  // register_wait already withdrew the wait
         }
+        if (wait == Wait::Burgled) return false;
+        if (wait == Wait::Burgling) registered_owner = 0;  // re-read the owner, then pick
       }
       if (spin > 64) std::this_thread::yield();
     }
   }
 
   void before_write(TetId t) {
+    if (mode_ == Mode::Burglary) return;  // no undo
     for (const Saved& s : log_) {
       if (s.tet == t) return;
     }
@@ -107,15 +146,31 @@ class OptimisticSync {
     created_.push_back(t);
   }
 
+  // Burglary: t, alive until now, dies by this thread's own write.
+  void killed(TetId t) {
+    if (mode_ == Mode::Burglary) own_kills_.push_back(t);
+  }
+
   void commit() {
     log_.clear();
     created_.clear();
+    own_kills_.clear();
     release_all();
+    end_phase();
   }
 
   // Restores every logged tetrahedron, then retires the new ones (dead, no children: a reader
   // that reaches one restarts its descent), then unlocks. New tetrahedra are not logged.
   void rollback() {
+    if (mode_ == Mode::Burglary) {
+      // Only ever called before the insertion's first write: nothing to undo.
+      created_.clear();
+      own_kills_.clear();
+      release_all();
+      end_phase();
+      if (burgled()) wait_for_burglar();
+      return;
+    }
     for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
       Tet& tet = mesh_.tets[it->tet];
       tet.neighbor = it->neighbor;
@@ -133,7 +188,51 @@ class OptimisticSync {
     release_all();
   }
 
+  // A lock was refused in the middle of legalization. Detect and prevent give the insertion up.
+  // A burglary victim releases everything, waits for the burglar's insertion to end, takes back
+  // the tetrahedra it created and checks them: all alive means the rest of its legalization is
+  // still valid.
+  Resume resume() {
+    if (mode_ != Mode::Burglary) return Resume::GiveUp;
+    ++stats_.burgled;
+    std::vector<TetId> mine;
+    for (const TetId c : created_) {
+      if (std::find(own_kills_.begin(), own_kills_.end(), c) == own_kills_.end()) mine.push_back(c);
+    }
+    for (;;) {
+      release_all();
+      end_phase();
+      if (burgled()) wait_for_burglar();
+      if (table_.stop.load(std::memory_order_relaxed)) return Resume::Stop;
+      bool refused = false;
+      for (const TetId c : mine) {
+        if (!acquire(c)) {
+          refused = true;
+          break;
+        }
+      }
+      if (refused) continue;  // burgled again (or a deadlock broken by someone else): repeat
+      for (const TetId c : mine) {
+        if (!mesh_.tets[c].alive.load(std::memory_order_acquire)) {
+          ++stats_.potential_problems;
+          return Resume::Stop;
+        }
+      }
+      return Resume::Continue;
+    }
+  }
+
+  // Burglary: a tetrahedron whose faces the sequential post-check must legalize (a dead one
+  // stands for the live tetrahedra below it in the DAG).
+  void mark_suspicious(TetId t) {
+    suspicious_.push_back(t);
+    ++stats_.suspicious_tetrahedra;
+  }
+  [[nodiscard]] const std::vector<TetId>& suspicious() const { return suspicious_; }
+
  private:
+  enum class Wait { Waiting, Deadlock, Burgled, Burgling };
+
   struct Saved {
     TetId tet;
     std::array<FaceRef, 4> neighbor;
@@ -141,36 +240,93 @@ class OptimisticSync {
     bool alive;
   };
 
+  // Withdraws this thread's registered wait; false when a burglar got there first.
   bool stop_waiting() {
-    table_.waiting_for[self_].store(0, std::memory_order_relaxed);
-    return false;
-  }
-
-  // Registers "self waits for owner" and follows the chain of waits; a chain that comes back to
-  // self is a deadlock. Under the mutex, registration and check are one step, so of the threads
-  // that close a cycle the last one sees it.
-  bool would_deadlock(std::uint32_t owner) {
-    std::lock_guard<std::mutex> guard(table_.cycle);
-    table_.waiting_for[self_].store(owner, std::memory_order_relaxed);
-    std::uint32_t current = owner;
-    for (std::size_t steps = 0; steps < table_.waiting_for.size(); ++steps) {
-      const std::uint32_t next = table_.waiting_for[current].load(std::memory_order_relaxed);
-      if (next == 0) return false;
-      if (next == self_) {
-        // Withdraw inside the critical section, so that the partner does not see this wait and
-        // give up too (both giving up could repeat forever).
-        table_.waiting_for[self_].store(0, std::memory_order_relaxed);
+    std::atomic<std::uint32_t>& status = table_.waiting_for[self_];
+    if (mode_ != Mode::Burglary) {
+      status.store(0, std::memory_order_relaxed);
+      return true;
+    }
+    std::uint32_t current = status.load(std::memory_order_acquire);
+    while ((current & LockTable::kBurgled) == 0) {
+      if (status.compare_exchange_weak(current, 0, std::memory_order_acq_rel,
+                                       std::memory_order_acquire)) {
         return true;
       }
-      current = next;
     }
     return false;
   }
 
+  [[nodiscard]] bool burgled() const {
+    return (table_.waiting_for[self_].load(std::memory_order_acquire) & LockTable::kBurgled) != 0;
+  }
+
+  // Registers "self waits for owner" and follows the chain of waits; a chain that comes back to
+  // self is a deadlock. Under the mutex, registration and check are one step, so of the threads
+  // that close a cycle the last one sees it. Detect: self gives up. Burglary: self breaks into
+  // `owner`, which is parked in acquire() and writes nothing until this insertion ends.
+  Wait register_wait(std::uint32_t owner) {
+    std::lock_guard<std::mutex> guard(table_.cycle);
+    std::atomic<std::uint32_t>& status = table_.waiting_for[self_];
+    if ((status.load(std::memory_order_acquire) & LockTable::kBurgled) != 0) return Wait::Burgled;
+    status.store(owner, std::memory_order_release);
+    std::uint32_t current = owner;
+    for (std::size_t steps = 0; steps < table_.waiting_for.size(); ++steps) {
+      const std::uint32_t next = table_.waiting_for[current].load(std::memory_order_acquire);
+      if (next == 0 || (next & LockTable::kBurgled) != 0) return Wait::Waiting;
+      if (next != self_) {
+        current = next;
+        continue;
+      }
+      if (mode_ != Mode::Burglary) {
+        // Withdraw inside the critical section, so that the partner does not see this wait and
+        // give up too (both giving up could repeat forever).
+        status.store(0, std::memory_order_relaxed);
+        return Wait::Deadlock;
+      }
+      // The owner may have just got its lock and be withdrawing its wait: the compare-and-swap
+      // decides, and a running owner is never burgled.
+      std::uint32_t expected = table_.waiting_for[owner].load(std::memory_order_acquire);
+      if (expected == 0 || (expected & LockTable::kBurgled) != 0) return Wait::Waiting;
+      table_.burgled_in_phase[owner].store(table_.phase[self_].load(std::memory_order_relaxed),
+                                           std::memory_order_relaxed);
+      if (!table_.waiting_for[owner].compare_exchange_strong(
+              expected, LockTable::kBurgled | self_, std::memory_order_acq_rel,
+              std::memory_order_acquire)) {
+        return Wait::Waiting;
+      }
+      status.store(0, std::memory_order_release);
+      ++stats_.deadlocks;
+      ++stats_.burglaries;
+      return Wait::Burgling;
+    }
+    return Wait::Waiting;
+  }
+
+  void end_phase() {
+    if (mode_ == Mode::Burglary) table_.phase[self_].fetch_add(1, std::memory_order_acq_rel);
+  }
+
+  // The victim holds no lock here, so nobody waits for it and this wait closes no cycle.
+  void wait_for_burglar() {
+    std::atomic<std::uint32_t>& status = table_.waiting_for[self_];
+    const std::uint32_t burglar = status.load(std::memory_order_acquire) & ~LockTable::kBurgled;
+    const std::uint64_t phase = table_.burgled_in_phase[self_].load(std::memory_order_relaxed);
+    for (std::uint64_t spin = 0; table_.phase[burglar].load(std::memory_order_acquire) == phase;
+         ++spin) {
+      if (table_.stop.load(std::memory_order_relaxed)) break;
+      if (spin > 64) std::this_thread::yield();
+    }
+    status.store(0, std::memory_order_release);
+  }
+
   void release_all() {
     for (const TetId t : held_) {
-      // release: this thread's writes are visible to the next owner.
-      mesh_.tets[t].lock_owner.store(0, std::memory_order_release);
+      // release: this thread's writes are visible to the next owner. A compare-and-swap, because
+      // a burglar may have taken the lock meanwhile (then it is the burglar's to release).
+      std::uint32_t expected = self_;
+      mesh_.tets[t].lock_owner.compare_exchange_strong(expected, 0, std::memory_order_release,
+                                                       std::memory_order_relaxed);
     }
     held_.clear();
   }
@@ -193,6 +349,8 @@ class OptimisticSync {
   std::vector<TetId> held_;
   std::vector<TetId> created_;
   std::vector<Saved> log_;
+  std::vector<TetId> own_kills_;   // burglary: created tetrahedra this thread itself replaced
+  std::vector<TetId> suspicious_;  // burglary: marks for the post-check
 };
 
 }  // namespace dtlab::engine

@@ -11,6 +11,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "dtlab/engine/validator.hpp"
 #include "dtlab/predicates/audit.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "incremental_delaunay.hpp"
@@ -158,6 +159,75 @@ void count_outcome(typename Dt::Outcome outcome, ThreadStats& t) {
   }
 }
 
+// Burglary's sequential post-check: the exact validator's count after the parallel run; with
+// --repair, Lawson flips on the marked tetrahedra, then (only if the validator still finds
+// non-Delaunay faces) on every tetrahedron, then (only if flips got stuck, which 3D allows) a
+// sequential rebuild. Each stage's count goes into stats.post_check.
+template <class K>
+std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
+                                    const std::vector<TetId>& marks,
+                                    const std::vector<std::uint32_t>& full_order,
+                                    const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                    const std::vector<std::pair<VertexId, VertexId>>& duplicates,
+                                    const TriangulateOptions& options, TriangulationStats& stats) {
+  PostCheck& check = stats.post_check;
+  check.done = true;
+  const std::vector<Point3> input(mesh.points.begin(),
+                                  mesh.points.begin() + static_cast<std::ptrdiff_t>(input_count));
+  auto count = [&](const std::vector<Tetrahedron>& tets) {
+    const auto t0 = Clock::now();
+    const ValidationReport report = validate(input, tets);
+    check.seconds_check += std::chrono::duration<double>(Clock::now() - t0).count();
+    return report;
+  };
+  auto violations = [&](const std::vector<Tetrahedron>& tets) {
+    const ValidationReport report = count(tets);
+    return report.non_delaunay_faces + report.reflex_boundary_edges;
+  };
+  std::vector<Tetrahedron> tets =
+      mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+  const ValidationReport before = count(tets);
+  check.non_delaunay_faces = before.non_delaunay_faces;
+  check.reflex_boundary_edges = before.reflex_boundary_edges;
+  check.mesh_consistent = before.mesh_consistent();
+  check.non_delaunay_after = before.non_delaunay_faces + before.reflex_boundary_edges;
+  if (!options.repair) return tets;
+
+  check.repaired = true;
+  const auto t0 = Clock::now();
+  const double check_before = check.seconds_check;
+  TriangulationStats repair_stats;
+  NoSync no_sync;
+  IncrementalDelaunay<K, NoSync> dt(mesh, options, repair_stats, no_sync);
+  check.repair_flips = dt.relegalize(marks, false);
+  tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+  check.non_delaunay_after_marked = violations(tets);
+  check.non_delaunay_after = check.non_delaunay_after_marked;
+  if (check.non_delaunay_after > 0) {
+    check.sweep_flips = dt.relegalize({}, true);
+    tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+    check.non_delaunay_after = violations(tets);
+  }
+  if (check.non_delaunay_after > 0) {
+    check.rebuilt = true;
+    SharedMesh fresh(mesh.points);
+    TriangulationStats rebuild_stats;
+    IncrementalDelaunay<K, NoSync> seq(fresh, options, rebuild_stats, no_sync);
+    seq.start(first[0], first[1], first[2], first[3]);
+    for (const std::uint32_t v : full_order) {
+      if (skip_first && (v == first[0] || v == first[1] || v == first[2] || v == first[3])) {
+        continue;
+      }
+      seq.insert(v);
+    }
+    tets = seq.finite_tetrahedra(static_cast<VertexId>(input_count));
+    check.non_delaunay_after = violations(tets);
+  }
+  check.seconds_repair = std::chrono::duration<double>(Clock::now() - t0).count() -
+                         (check.seconds_check - check_before);
+  return tets;
+}
+
 }  // namespace
 
 std::vector<std::vector<std::uint32_t>> distribute(const std::vector<Point3>& points,
@@ -206,6 +276,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   std::vector<std::uint64_t> predicate_calls(static_cast<std::size_t>(threads), 0);
   std::vector<std::uint64_t> location_steps(static_cast<std::size_t>(threads), 0);
   std::atomic<std::uint64_t> progress{0};
+  std::vector<std::vector<TetId>> suspicious(static_cast<std::size_t>(threads));
   LockTable table(threads);
   std::atomic<std::size_t> shared_index{0};
   const bool dynamic = options.distribution == Distribution::Dynamic;
@@ -237,6 +308,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       return;
     }
     const auto mode = options.method == Method::OptimisticPrevent ? OptimisticSync::Mode::Prevent
+                      : options.method == Method::Burglary        ? OptimisticSync::Mode::Burglary
                                                                   : OptimisticSync::Mode::Detect;
     OptimisticSync sync(mesh, table, static_cast<std::uint32_t>(i + 1), mode, counters,
                         options.stress);
@@ -261,6 +333,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       }
     }
     finish_thread(i, dt);
+    suspicious[index] = sync.suspicious();
   };
 
   auto batch = [&] {
@@ -362,6 +435,12 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     stats.abandoned_insertions += t.abandoned;
   }
   stats.dag_nodes = mesh.tets.size();
+  if (options.method == Method::Burglary) {
+    std::vector<TetId> marks;
+    for (const auto& m : suspicious) marks.insert(marks.end(), m.begin(), m.end());
+    return post_check<K>(mesh, input_count, marks, full_order, first, skip_first, all_duplicates,
+                         options, stats);
+  }
   return mesh.finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
 }
 

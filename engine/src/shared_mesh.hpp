@@ -55,6 +55,11 @@ struct SharedMesh {
   }
 };
 
+// What a lock refused during legalization leads to: GiveUp (undo the insertion: detect, prevent),
+// Continue (a burglary victim whose part of the mesh is intact) or Stop (a burglary victim whose
+// part was changed: the rest of its legalization is dropped and marked suspicious).
+enum class Resume { GiveUp, Continue, Stop };
+
 // The sequential engine's synchronization: none. Every hook is an empty inline function, so the
 // sequential build pays nothing for the parallel methods' policy slots.
 struct NoSync {
@@ -64,6 +69,9 @@ struct NoSync {
   void created(TetId /*t*/) {}                // a new tetrahedron, owned from birth
   void commit() {}                            // the insertion is complete: unlock
   void rollback() {}                          // give up: undo everything, unlock
+  void killed(TetId /*t*/) {}                 // t dies by this thread's write
+  Resume resume() { return Resume::GiveUp; }  // a lock was refused during legalization
+  void mark_suspicious(TetId /*t*/) {}        // burglary: for the post-check
 };
 
 }  // namespace dtlab::engine

@@ -170,6 +170,8 @@ const char* to_string(Method m) {
       return "optimistic-detect";
     case Method::OptimisticPrevent:
       return "optimistic-prevent";
+    case Method::Burglary:
+      return "burglary";
     case Method::Batch:
       return "batch";
   }
@@ -264,7 +266,9 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
         dispatch(points, input.size(), order, {n, n + 1, n + 2, n + 3}, false, options, stats);
   }
   stats.tetrahedra = result.tetrahedra.size();
-  stats.seconds.total = std::chrono::duration<double>(Clock::now() - start).count();
+  // The post-check's validation is a measurement, not part of the method.
+  stats.seconds.total = std::chrono::duration<double>(Clock::now() - start).count() -
+                        stats.post_check.seconds_check;
   stats.seconds.other = std::max(0.0, stats.seconds.total - stats.seconds.location -
                                           stats.seconds.subdivision - stats.seconds.legalization);
 
@@ -311,30 +315,61 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   j["peak_rss_bytes"] = s.peak_rss_bytes;
   j["scale_exponent"] = s.scale_exponent;
   if (!s.threads.empty()) {
-    std::uint64_t waits = 0, deadlocks = 0, give_ups = 0, raises = 0;
+    std::uint64_t waits = 0, deadlocks = 0, give_ups = 0, raises = 0, burglaries = 0, burgled = 0,
+                  problems = 0, suspicious = 0;
     nlohmann::ordered_json per_thread = nlohmann::ordered_json::array();
     for (const ThreadStats& t : s.threads) {
       waits += t.waits;
       deadlocks += t.deadlocks;
       give_ups += t.give_ups;
       raises += t.priority_raises;
+      burglaries += t.burglaries;
+      burgled += t.burgled;
+      problems += t.potential_problems;
+      suspicious += t.suspicious_tetrahedra;
       per_thread.push_back({{"inserted", t.inserted},
                             {"duplicates", t.duplicates},
                             {"abandoned", t.abandoned},
                             {"waits", t.waits},
                             {"deadlocks", t.deadlocks},
                             {"give_ups", t.give_ups},
-                            {"priority_raises", t.priority_raises}});
+                            {"priority_raises", t.priority_raises},
+                            {"burglaries", t.burglaries},
+                            {"burgled", t.burgled},
+                            {"potential_problems", t.potential_problems},
+                            {"suspicious_tetrahedra", t.suspicious_tetrahedra}});
     }
     j["waits"] = waits;
     j["deadlocks"] = deadlocks;
     j["give_ups"] = give_ups;
     j["priority_raises"] = raises;
+    j["burglaries"] = burglaries;
+    j["burgled"] = burgled;
+    j["potential_problems"] = problems;
+    j["suspicious_tetrahedra"] = suspicious;
     if (options.method == Method::Batch) {
       j["queue_full_waits"] = s.queue_full_waits;
       j["queue_empty_waits"] = s.queue_empty_waits;
     }
     j["per_thread"] = per_thread;
+  }
+  if (s.post_check.done) {
+    const PostCheck& c = s.post_check;
+    nlohmann::ordered_json pc;
+    pc["non_delaunay_faces"] = c.non_delaunay_faces;
+    pc["reflex_boundary_edges"] = c.reflex_boundary_edges;
+    pc["mesh_consistent"] = c.mesh_consistent;
+    pc["repaired"] = c.repaired;
+    if (c.repaired) {
+      pc["repair_flips"] = c.repair_flips;
+      pc["non_delaunay_after_marked"] = c.non_delaunay_after_marked;
+      pc["sweep_flips"] = c.sweep_flips;
+      pc["rebuilt"] = c.rebuilt;
+      pc["seconds_repair"] = c.seconds_repair;
+    }
+    pc["non_delaunay_after"] = c.non_delaunay_after;
+    pc["seconds_check"] = c.seconds_check;
+    j["post_check"] = pc;
   }
   j["method"] = method;
   j["threads"] = threads;

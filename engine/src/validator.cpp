@@ -193,6 +193,12 @@ bool ValidationReport::consistent() const {
          missing_points == 0 && repeated_duplicates == 0 && euler_characteristic == 1;
 }
 
+bool ValidationReport::mesh_consistent() const {
+  return invalid_tetrahedra == 0 && non_positive_orientation == 0 && non_manifold_faces == 0 &&
+         inconsistent_faces == 0 && open_boundary_edges == 0 && missing_points == 0 &&
+         repeated_duplicates == 0 && euler_characteristic == 1;
+}
+
 bool ValidationReport::valid() const {
   return consistent() && non_delaunay_faces == 0;
 }
@@ -201,6 +207,7 @@ std::string ValidationReport::json() const {
   nlohmann::ordered_json j;
   j["valid"] = valid();
   j["consistent"] = consistent();
+  j["mesh_consistent"] = mesh_consistent();
   j["points"] = points;
   j["tetrahedra"] = tetrahedra;
   j["interior_faces"] = interior_faces;

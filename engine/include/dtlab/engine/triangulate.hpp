@@ -16,7 +16,14 @@ using predicates::Point3;
 
 enum class KernelKind { Fast, Adaptive, Exact };
 // The lock methods of the paper (Sect. 5) and the batch method it described (docs/design.md).
-enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent, Batch };
+enum class Method {
+  Sequential,
+  Pessimistic,
+  OptimisticDetect,
+  OptimisticPrevent,
+  Burglary,
+  Batch
+};
 // How the permuted points are split among the threads (paper Sect. 6).
 enum class Distribution { Static, Dynamic, Strips, Blocks };
 enum class Bounding { Infinite, AuxTet };
@@ -47,6 +54,8 @@ struct TriangulateOptions {
   bool stress = false;
   // A run with no finished insertion for this long is stopped and reported as a failure.
   double watchdog_seconds = 120.0;
+  // Burglary: re-legalize the suspicious tetrahedra after the run (the paper's post-check).
+  bool repair = false;
 };
 
 struct FlipCounts {
@@ -73,6 +82,27 @@ struct ThreadStats {
   std::uint64_t deadlocks = 0;        // waits that would have closed a cycle (detect)
   std::uint64_t give_ups = 0;         // insertions undone and retried
   std::uint64_t priority_raises = 0;  // prevent
+  std::uint64_t burglaries = 0;       // burglary: deadlocks broken by picking the partner's locks
+  std::uint64_t burgled = 0;          // burglary: times this thread was the victim
+  std::uint64_t potential_problems = 0;     // victim found its part changed and stopped
+  std::uint64_t suspicious_tetrahedra = 0;  // marks left for the post-check
+};
+
+// Burglary's sequential post-check (paper Sect. 5): the exact validator's count after the
+// parallel run, and with --repair the flips on the marked tetrahedra and the counts after them.
+struct PostCheck {
+  bool done = false;
+  std::uint64_t non_delaunay_faces = 0;     // after the parallel run
+  std::uint64_t reflex_boundary_edges = 0;  // non-convex hull: infinite tetrahedra not Delaunay
+  bool mesh_consistent = false;  // adjacency, orientation, closed boundary, every point a vertex
+  bool repaired = false;                 // --repair ran
+  std::uint64_t repair_flips = 0;        // flips on and below the marked tetrahedra
+  std::uint64_t non_delaunay_after_marked = 0;  // faces + reflex boundary edges left
+  std::uint64_t sweep_flips = 0;  // second pass over every tetrahedron, when marks missed some
+  std::uint64_t non_delaunay_after = 0;  // final count (faces + reflex boundary edges)
+  bool rebuilt = false;  // flips got stuck (possible in 3D): triangulated again sequentially
+  double seconds_check = 0.0;   // validation (excluded from seconds.total)
+  double seconds_repair = 0.0;  // flips and rebuild (included)
 };
 
 struct TriangulationStats {
@@ -92,6 +122,7 @@ struct TriangulationStats {
   std::vector<ThreadStats> threads;     // parallel methods: one entry per inserting thread
   std::uint64_t queue_full_waits = 0;   // batch: locating threads blocked on a full queue
   std::uint64_t queue_empty_waits = 0;  // batch: the inserting thread found the queue empty
+  PostCheck post_check;                 // burglary
 };
 
 struct Triangulation {

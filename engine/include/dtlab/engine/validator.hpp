@@ -35,6 +35,10 @@ struct ValidationReport {
   std::vector<std::int32_t> non_delaunay_flags;
 
   [[nodiscard]] bool consistent() const;  // everything but the Delaunay property
+  // A sound mesh whose boundary may be non-convex: everything but the Delaunay property and
+  // reflex boundary edges. With the vertex at infinity, a reflex boundary edge is a non-Delaunay
+  // face of an infinite tetrahedron (burglary can leave one; docs/design.md).
+  [[nodiscard]] bool mesh_consistent() const;
   [[nodiscard]] bool valid() const;       // consistent and Delaunay
   [[nodiscard]] std::string json() const;
 };
