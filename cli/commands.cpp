@@ -143,29 +143,32 @@ int run_triangulate(const TriangulateArgs& args) {
         sum.potential_problems += t.potential_problems;
         sum.suspicious_tetrahedra += t.suspicious_tetrahedra;
       }
-      std::printf("  threads %d: waits %llu, deadlocks %llu, give-ups %llu, burglaries %llu, "
-                  "potential problems %llu, suspicious tetrahedra %llu\n",
-                  args.threads, static_cast<unsigned long long>(sum.waits),
-                  static_cast<unsigned long long>(sum.deadlocks),
-                  static_cast<unsigned long long>(sum.give_ups),
-                  static_cast<unsigned long long>(sum.burglaries),
-                  static_cast<unsigned long long>(sum.potential_problems),
-                  static_cast<unsigned long long>(sum.suspicious_tetrahedra));
+      std::printf(
+          "  threads %d: waits %llu, deadlocks %llu, give-ups %llu, burglaries %llu, "
+          "potential problems %llu, suspicious tetrahedra %llu\n",
+          args.threads, static_cast<unsigned long long>(sum.waits),
+          static_cast<unsigned long long>(sum.deadlocks),
+          static_cast<unsigned long long>(sum.give_ups),
+          static_cast<unsigned long long>(sum.burglaries),
+          static_cast<unsigned long long>(sum.potential_problems),
+          static_cast<unsigned long long>(sum.suspicious_tetrahedra));
     }
     if (s.post_check.done) {
       const engine::PostCheck& c = s.post_check;
-      std::printf("  post-check: %llu non-Delaunay faces and %llu reflex boundary edges after the "
-                  "run, mesh consistent: %s",
-                  static_cast<unsigned long long>(c.non_delaunay_faces),
-                  static_cast<unsigned long long>(c.reflex_boundary_edges),
-                  c.mesh_consistent ? "yes" : "no");
+      std::printf(
+          "  post-check: %llu non-Delaunay faces and %llu reflex boundary edges after the "
+          "run, mesh consistent: %s",
+          static_cast<unsigned long long>(c.non_delaunay_faces),
+          static_cast<unsigned long long>(c.reflex_boundary_edges),
+          c.mesh_consistent ? "yes" : "no");
       if (c.repaired) {
-        std::printf("; repair: %llu flips on the marks -> %llu, sweep %llu flips, rebuilt: %s -> "
-                    "%llu",
-                    static_cast<unsigned long long>(c.repair_flips),
-                    static_cast<unsigned long long>(c.non_delaunay_after_marked),
-                    static_cast<unsigned long long>(c.sweep_flips), c.rebuilt ? "yes" : "no",
-                    static_cast<unsigned long long>(c.non_delaunay_after));
+        std::printf(
+            "; repair: %llu flips on the marks -> %llu, sweep %llu flips, rebuilt: %s -> "
+            "%llu",
+            static_cast<unsigned long long>(c.repair_flips),
+            static_cast<unsigned long long>(c.non_delaunay_after_marked),
+            static_cast<unsigned long long>(c.sweep_flips), c.rebuilt ? "yes" : "no",
+            static_cast<unsigned long long>(c.non_delaunay_after));
       }
       std::printf("\n");
     }

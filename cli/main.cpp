@@ -52,8 +52,9 @@ int main(int argc, char** argv) {
       {"dynamic", dtlab::engine::Distribution::Dynamic},
       {"strips", dtlab::engine::Distribution::Strips},
       {"blocks", dtlab::engine::Distribution::Blocks}};
-  tri->add_option("--method", targs.options.method,
-                  "sequential | pessimistic | optimistic-detect | optimistic-prevent | burglary | batch")
+  tri->add_option(
+         "--method", targs.options.method,
+         "sequential | pessimistic | optimistic-detect | optimistic-prevent | burglary | batch")
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case));
   tri->add_option("--threads", targs.threads, "worker threads");
   tri->add_option("--distribution", targs.options.distribution,

@@ -87,7 +87,8 @@ class OptimisticSync {
       if (mode_ == Mode::Burglary) {
         if (burgled()) return false;
         // The picklock: a victim of this thread holds t.
-        if (table_.waiting_for[owner].load(std::memory_order_acquire) == (LockTable::kBurgled | self_) &&
+        if (table_.waiting_for[owner].load(std::memory_order_acquire) ==
+                (LockTable::kBurgled | self_) &&
             word.compare_exchange_strong(owner, self_, std::memory_order_acq_rel,
                                          std::memory_order_acquire)) {
           held_.push_back(t);
@@ -290,9 +291,9 @@ class OptimisticSync {
       if (expected == 0 || (expected & LockTable::kBurgled) != 0) return Wait::Waiting;
       table_.burgled_in_phase[owner].store(table_.phase[self_].load(std::memory_order_relaxed),
                                            std::memory_order_relaxed);
-      if (!table_.waiting_for[owner].compare_exchange_strong(
-              expected, LockTable::kBurgled | self_, std::memory_order_acq_rel,
-              std::memory_order_acquire)) {
+      if (!table_.waiting_for[owner].compare_exchange_strong(expected, LockTable::kBurgled | self_,
+                                                             std::memory_order_acq_rel,
+                                                             std::memory_order_acquire)) {
         return Wait::Waiting;
       }
       status.store(0, std::memory_order_release);

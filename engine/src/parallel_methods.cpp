@@ -210,17 +210,11 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   }
   if (check.non_delaunay_after > 0) {
     check.rebuilt = true;
-    SharedMesh fresh(mesh.points);
     TriangulationStats rebuild_stats;
-    IncrementalDelaunay<K, NoSync> seq(fresh, options, rebuild_stats, no_sync);
-    seq.start(first[0], first[1], first[2], first[3]);
-    for (const std::uint32_t v : full_order) {
-      if (skip_first && (v == first[0] || v == first[1] || v == first[2] || v == first[3])) {
-        continue;
-      }
-      seq.insert(v);
-    }
-    tets = seq.finite_tetrahedra(static_cast<VertexId>(input_count));
+    TriangulateOptions sequential = options;
+    sequential.progress = false;
+    tets = run_sequential<K>(mesh.points, input_count, full_order, first, skip_first, sequential,
+                             rebuild_stats);
     check.non_delaunay_after = violations(tets);
   }
   check.seconds_repair = std::chrono::duration<double>(Clock::now() - t0).count() -

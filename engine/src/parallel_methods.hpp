@@ -16,6 +16,14 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
                                       const std::array<std::uint32_t, 4>& first, bool skip_first,
                                       const TriangulateOptions& options, TriangulationStats& stats);
 
+// The sequential engine on the same arguments (engine/src/triangulate.cpp).
+template <class K>
+std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::size_t input_count,
+                                        const std::vector<std::uint32_t>& order,
+                                        const std::array<std::uint32_t, 4>& first,
+                                        bool skip_first, const TriangulateOptions& options,
+                                        TriangulationStats& stats);
+
 // The points of `order` split among `threads` per the distribution (static, strips, blocks;
 // dynamic is handled by the caller with a shared index). Each part keeps the random order.
 std::vector<std::vector<std::uint32_t>> distribute(const std::vector<Point3>& points,

@@ -61,11 +61,14 @@ class Progress {
   bool shown_ = false;
 };
 
+}  // namespace
+
 template <class K>
-std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t input_count,
-                             const std::vector<std::uint32_t>& order,
-                             const std::array<std::uint32_t, 4>& first, bool skip_first,
-                             const TriangulateOptions& options, TriangulationStats& stats) {
+std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::size_t input_count,
+                                        const std::vector<std::uint32_t>& order,
+                                        const std::array<std::uint32_t, 4>& first,
+                                        bool skip_first, const TriangulateOptions& options,
+                                        TriangulationStats& stats) {
   IncrementalDelaunay<K> dt(points, options, stats);
   dt.start(first[0], first[1], first[2], first[3]);
   if (skip_first) stats.inserted += 4;
@@ -93,13 +96,27 @@ std::vector<Tetrahedron> run(const std::vector<Point3>& points, std::size_t inpu
   return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
+#define DTLAB_INSTANTIATE(K)                                                             \
+  template std::vector<Tetrahedron> run_sequential<K>(                                   \
+      const std::vector<Point3>&, std::size_t, const std::vector<std::uint32_t>&,        \
+      const std::array<std::uint32_t, 4>&, bool, const TriangulateOptions&, TriangulationStats&);
+DTLAB_INSTANTIATE(predicates::FastKernel)
+DTLAB_INSTANTIATE(predicates::AdaptiveKernel)
+DTLAB_INSTANTIATE(predicates::ExactKernel)
+DTLAB_INSTANTIATE(predicates::Audited<predicates::FastKernel>)
+DTLAB_INSTANTIATE(predicates::Audited<predicates::AdaptiveKernel>)
+DTLAB_INSTANTIATE(predicates::Audited<predicates::ExactKernel>)
+#undef DTLAB_INSTANTIATE
+
+namespace {
+
 template <class K>
 std::vector<Tetrahedron> run_method(const std::vector<Point3>& points, std::size_t input_count,
                                     const std::vector<std::uint32_t>& order,
                                     const std::array<std::uint32_t, 4>& first, bool skip_first,
                                     const TriangulateOptions& options, TriangulationStats& stats) {
   if (options.method == Method::Sequential) {
-    return run<K>(points, input_count, order, first, skip_first, options, stats);
+    return run_sequential<K>(points, input_count, order, first, skip_first, options, stats);
   }
   return run_parallel<K>(points, input_count, order, first, skip_first, options, stats);
 }
@@ -267,8 +284,8 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
   }
   stats.tetrahedra = result.tetrahedra.size();
   // The post-check's validation is a measurement, not part of the method.
-  stats.seconds.total = std::chrono::duration<double>(Clock::now() - start).count() -
-                        stats.post_check.seconds_check;
+  stats.seconds.total =
+      std::chrono::duration<double>(Clock::now() - start).count() - stats.post_check.seconds_check;
   stats.seconds.other = std::max(0.0, stats.seconds.total - stats.seconds.location -
                                           stats.seconds.subdivision - stats.seconds.legalization);
 

@@ -16,14 +16,7 @@ using predicates::Point3;
 
 enum class KernelKind { Fast, Adaptive, Exact };
 // The lock methods of the paper (Sect. 5) and the batch method it described (docs/design.md).
-enum class Method {
-  Sequential,
-  Pessimistic,
-  OptimisticDetect,
-  OptimisticPrevent,
-  Burglary,
-  Batch
-};
+enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent, Burglary, Batch };
 // How the permuted points are split among the threads (paper Sect. 6).
 enum class Distribution { Static, Dynamic, Strips, Blocks };
 enum class Bounding { Infinite, AuxTet };
@@ -94,13 +87,13 @@ struct PostCheck {
   bool done = false;
   std::uint64_t non_delaunay_faces = 0;     // after the parallel run
   std::uint64_t reflex_boundary_edges = 0;  // non-convex hull: infinite tetrahedra not Delaunay
-  bool mesh_consistent = false;  // adjacency, orientation, closed boundary, every point a vertex
-  bool repaired = false;                 // --repair ran
-  std::uint64_t repair_flips = 0;        // flips on and below the marked tetrahedra
+  bool mesh_consistent = false;    // adjacency, orientation, closed boundary, every point a vertex
+  bool repaired = false;           // --repair ran
+  std::uint64_t repair_flips = 0;  // flips on and below the marked tetrahedra
   std::uint64_t non_delaunay_after_marked = 0;  // faces + reflex boundary edges left
   std::uint64_t sweep_flips = 0;  // second pass over every tetrahedron, when marks missed some
   std::uint64_t non_delaunay_after = 0;  // final count (faces + reflex boundary edges)
-  bool rebuilt = false;  // flips got stuck (possible in 3D): triangulated again sequentially
+  bool rebuilt = false;         // flips got stuck (possible in 3D): triangulated again sequentially
   double seconds_check = 0.0;   // validation (excluded from seconds.total)
   double seconds_repair = 0.0;  // flips and rebuild (included)
 };

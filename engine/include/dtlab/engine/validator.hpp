@@ -39,7 +39,7 @@ struct ValidationReport {
   // reflex boundary edges. With the vertex at infinity, a reflex boundary edge is a non-Delaunay
   // face of an infinite tetrahedron (burglary can leave one; docs/design.md).
   [[nodiscard]] bool mesh_consistent() const;
-  [[nodiscard]] bool valid() const;       // consistent and Delaunay
+  [[nodiscard]] bool valid() const;  // consistent and Delaunay
   [[nodiscard]] std::string json() const;
 };
 
