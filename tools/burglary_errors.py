@@ -10,6 +10,7 @@ on stdout and, with --plot, a PNG of non-Delaunay faces per 1000 points.
 
 Usage: tools/burglary_errors.py N SEEDS [--families a,b] [--threads 2,4,8] [--plot FILE]
        [--dtlab PATH] [--stress]
+       tools/burglary_errors.py --plot-from TABLE.md --plot FILE   (plot a table written before)
 """
 import argparse
 import json
@@ -26,10 +27,48 @@ def run(dtlab, spec, threads, seed, stress):
     return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
 
 
+def plot(rows, families, thread_counts, path, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 3.6))
+    width = 0.8 / len(thread_counts)
+    for k, threads in enumerate(thread_counts):
+        xs = [i + k * width for i in range(len(families))]
+        ax.bar(xs, [rows[f][threads] for f in families], width, label="%d threads" % threads)
+    ax.set_xticks([i + width * (len(thread_counts) - 1) / 2 for i in range(len(families))])
+    ax.set_xticklabels(families)
+    ax.set_ylabel("non-Delaunay faces per 1000 points")
+    ax.set_title(title)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def plot_table(table_path, path):
+    """Plots the non-Delaunay column of a table this script wrote (its first line names N)."""
+    lines = open(table_path).read().splitlines()
+    n = int(lines[0].split("`")[1].split()[1])
+    rows, families, thread_counts = {}, [], []
+    for line in lines:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) < 6 or not cells[1].isdigit():
+            continue
+        family, threads, bad = cells[0], int(cells[1]), float(cells[5])
+        if family not in families:
+            families.append(family)
+        if threads not in thread_counts:
+            thread_counts.append(threads)
+        rows.setdefault(family, {})[threads] = 1000.0 * bad / n
+    plot(rows, families, thread_counts, path,
+         "burglary, %d points (%s)" % (n, os.path.basename(table_path)))
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("n", type=int)
-    parser.add_argument("seeds", type=int)
+    parser.add_argument("n", type=int, nargs="?", default=0)
+    parser.add_argument("seeds", type=int, nargs="?", default=0)
+    parser.add_argument("--plot-from", default="")
     parser.add_argument("--families", default="uniform,normal,cluster,grid,sphere")
     parser.add_argument("--threads", default="2,4,8")
     parser.add_argument("--plot", default="")
@@ -38,6 +77,9 @@ def main():
     args = parser.parse_args()
     families = args.families.split(",")
     thread_counts = [int(t) for t in args.threads.split(",")]
+    if args.plot_from:
+        plot_table(args.plot_from, args.plot)
+        return
 
     print("`tools/burglary_errors.py %d %d --families %s --threads %s%s` on %d logical CPUs "
           "(more threads than CPUs are oversubscribed), adaptive kernel, static distribution, "
@@ -75,24 +117,9 @@ def main():
             if any(c["non_delaunay_after"] != 0 for c in pc):
                 raise SystemExit("a --repair run did not end Delaunay")
     if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(7, 3.6))
-        width = 0.8 / len(thread_counts)
-        for k, threads in enumerate(thread_counts):
-            xs = [i + k * width for i in range(len(families))]
-            ax.bar(xs, [plot_rows[f][threads] for f in families], width,
-                   label="%d threads" % threads)
-        ax.set_xticks([i + width * (len(thread_counts) - 1) / 2 for i in range(len(families))])
-        ax.set_xticklabels(families)
-        ax.set_ylabel("non-Delaunay faces per 1000 points")
-        ax.set_title("burglary, %d points, median of %d seeds, %d CPUs"
-                     % (args.n, args.seeds, os.cpu_count()))
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=110)
-
+        plot(plot_rows, families, thread_counts, args.plot,
+             "burglary, %d points, median of %d seeds, %d CPUs"
+             % (args.n, args.seeds, os.cpu_count()))
 
 if __name__ == "__main__":
     main()
