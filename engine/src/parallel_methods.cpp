@@ -446,12 +446,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   template std::vector<Tetrahedron> run_parallel<K>(                              \
       const std::vector<Point3>&, std::size_t, const std::vector<std::uint32_t>&, \
       const std::array<std::uint32_t, 4>&, bool, const TriangulateOptions&, TriangulationStats&);
-DTLAB_INSTANTIATE(predicates::FastKernel)
-DTLAB_INSTANTIATE(predicates::AdaptiveKernel)
-DTLAB_INSTANTIATE(predicates::ExactKernel)
-DTLAB_INSTANTIATE(predicates::Audited<predicates::FastKernel>)
-DTLAB_INSTANTIATE(predicates::Audited<predicates::AdaptiveKernel>)
-DTLAB_INSTANTIATE(predicates::Audited<predicates::ExactKernel>)
+DTLAB_FOR_EACH_KERNEL(DTLAB_INSTANTIATE)
 #undef DTLAB_INSTANTIATE
 
 }  // namespace dtlab::engine

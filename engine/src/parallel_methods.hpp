@@ -16,12 +16,21 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
                                       const std::array<std::uint32_t, 4>& first, bool skip_first,
                                       const TriangulateOptions& options, TriangulationStats& stats);
 
+// Every kernel the drivers are instantiated for: X(K) for each.
+#define DTLAB_FOR_EACH_KERNEL(X)                     \
+  X(predicates::FastKernel)                          \
+  X(predicates::AdaptiveKernel)                      \
+  X(predicates::ExactKernel)                         \
+  X(predicates::Audited<predicates::FastKernel>)     \
+  X(predicates::Audited<predicates::AdaptiveKernel>) \
+  X(predicates::Audited<predicates::ExactKernel>)
+
 // The sequential engine on the same arguments (engine/src/triangulate.cpp).
 template <class K>
 std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::size_t input_count,
                                         const std::vector<std::uint32_t>& order,
-                                        const std::array<std::uint32_t, 4>& first,
-                                        bool skip_first, const TriangulateOptions& options,
+                                        const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                        const TriangulateOptions& options,
                                         TriangulationStats& stats);
 
 // The points of `order` split among `threads` per the distribution (static, strips, blocks;

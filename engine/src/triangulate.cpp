@@ -66,8 +66,8 @@ class Progress {
 template <class K>
 std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::size_t input_count,
                                         const std::vector<std::uint32_t>& order,
-                                        const std::array<std::uint32_t, 4>& first,
-                                        bool skip_first, const TriangulateOptions& options,
+                                        const std::array<std::uint32_t, 4>& first, bool skip_first,
+                                        const TriangulateOptions& options,
                                         TriangulationStats& stats) {
   IncrementalDelaunay<K> dt(points, options, stats);
   dt.start(first[0], first[1], first[2], first[3]);
@@ -96,16 +96,11 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
-#define DTLAB_INSTANTIATE(K)                                                             \
-  template std::vector<Tetrahedron> run_sequential<K>(                                   \
-      const std::vector<Point3>&, std::size_t, const std::vector<std::uint32_t>&,        \
+#define DTLAB_INSTANTIATE(K)                                                      \
+  template std::vector<Tetrahedron> run_sequential<K>(                            \
+      const std::vector<Point3>&, std::size_t, const std::vector<std::uint32_t>&, \
       const std::array<std::uint32_t, 4>&, bool, const TriangulateOptions&, TriangulationStats&);
-DTLAB_INSTANTIATE(predicates::FastKernel)
-DTLAB_INSTANTIATE(predicates::AdaptiveKernel)
-DTLAB_INSTANTIATE(predicates::ExactKernel)
-DTLAB_INSTANTIATE(predicates::Audited<predicates::FastKernel>)
-DTLAB_INSTANTIATE(predicates::Audited<predicates::AdaptiveKernel>)
-DTLAB_INSTANTIATE(predicates::Audited<predicates::ExactKernel>)
+DTLAB_FOR_EACH_KERNEL(DTLAB_INSTANTIATE)
 #undef DTLAB_INSTANTIATE
 
 namespace {
