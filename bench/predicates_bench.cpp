@@ -1,4 +1,5 @@
-// ns per predicate call for fast, adaptive and exact, on random and near-degenerate inputs.
+// ns per predicate call for fast, adaptive, filtered and exact, on random and near-degenerate
+// inputs.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@ namespace {
 using dtlab::predicates::AdaptiveKernel;
 using dtlab::predicates::ExactKernel;
 using dtlab::predicates::FastKernel;
+using dtlab::predicates::FilteredKernel;
 using dtlab::predicates::Point3;
 
 std::vector<Point3> inputs(bool near_degenerate) {
@@ -56,9 +58,11 @@ void insphere(benchmark::State& state) {
 // Arg 0: random points; arg 1: near-cospherical points.
 BENCHMARK(orient3d<FastKernel>)->Arg(0)->Arg(1);
 BENCHMARK(orient3d<AdaptiveKernel>)->Arg(0)->Arg(1);
+BENCHMARK(orient3d<FilteredKernel>)->Arg(0)->Arg(1);
 BENCHMARK(orient3d<ExactKernel>)->Arg(0)->Arg(1);
 BENCHMARK(insphere<FastKernel>)->Arg(0)->Arg(1);
 BENCHMARK(insphere<AdaptiveKernel>)->Arg(0)->Arg(1);
+BENCHMARK(insphere<FilteredKernel>)->Arg(0)->Arg(1);
 BENCHMARK(insphere<ExactKernel>)->Arg(0)->Arg(1);
 
 }  // namespace

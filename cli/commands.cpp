@@ -56,9 +56,20 @@ int run_info(const std::string& input, std::uint64_t seed) {
   std::printf("collinear:           %s\n", info.dimension <= 1 ? "yes" : "no");
   std::printf("magnitude range:     %.6g .. %.6g (smallest nonzero |coordinate| .. largest)\n",
               info.min_abs_nonzero, info.max_abs);
-  std::printf("adaptive range:      %s\n", info.adaptive_range_ok
-                                               ? "ok (exact after power-of-two scaling)"
-                                               : "too wide: use --predicates exact");
+  const engine::RangeScaling scaling =
+      engine::adaptive_range_scaling(info.max_abs, info.min_abs_nonzero);
+  if (scaling.lossless) {
+    std::printf("scaling:             exact, by 2^%d (largest |coordinate| to [2^99, 2^100))\n",
+                scaling.exponent);
+  } else {
+    std::printf("scaling:             none (2^%d would make nonzero coordinates subnormal)\n",
+                scaling.exponent);
+  }
+  std::printf("expansion range:     %s\n",
+              info.within_expansion_range
+                  ? "yes (adaptive and filtered kernels never need their GMP fallback)"
+                  : "no (adaptive and filtered calls that the float stage cannot decide go to "
+                    "GMP: exact, slower)");
   return 0;
 }
 
@@ -210,10 +221,27 @@ int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::K
               input.c_str(), points.size(), static_cast<unsigned long long>(seed),
               engine::to_string(kernel));
   std::printf("%s", predicates::audit_table(engine::to_string(kernel)).c_str());
-  if (kernel != engine::KernelKind::Fast) {
-    std::printf("(wrong sign is measured for the fast kernel only, against the exact kernel)\n");
-  } else {
-    std::printf("(stages apply to the adaptive kernel only)\n");
+  switch (kernel) {
+    case engine::KernelKind::Fast:
+      std::printf("(stages apply to the adaptive and filtered kernels only)\n");
+      break;
+    case engine::KernelKind::Adaptive:
+      std::printf(
+          "(stage A: float filter; B: exact on rounded differences; C: tail correction; D: exact "
+          "expansions; gmp: GMP fallback outside the expansion range. Wrong sign is measured for "
+          "the fast kernel only)\n");
+      break;
+    case engine::KernelKind::Filtered:
+      std::printf(
+          "(stage A: the semi-static filter decided; every later column is a filter failure: "
+          "D: exact expansions, gmp: GMP fallback outside the expansion range. Wrong sign is "
+          "measured for the fast kernel only)\n");
+      break;
+    case engine::KernelKind::Exact:
+      std::printf(
+          "(stages apply to the adaptive and filtered kernels only; wrong sign is measured for "
+          "the fast kernel only, against the exact kernel)\n");
+      break;
   }
   std::printf("tetrahedra: %zu, abandoned insertions: %llu\n", result.tetrahedra.size(),
               static_cast<unsigned long long>(result.stats.abandoned_insertions));

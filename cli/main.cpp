@@ -15,8 +15,10 @@ int main(int argc, char** argv) {
   using dtlab::engine::KernelKind;
   CLI::App app{"dtlab: a testbed for parallel 3D Delaunay triangulation with robust predicates"};
   app.require_subcommand(1);
-  const std::map<std::string, KernelKind> kernels{
-      {"fast", KernelKind::Fast}, {"adaptive", KernelKind::Adaptive}, {"exact", KernelKind::Exact}};
+  const std::map<std::string, KernelKind> kernels{{"fast", KernelKind::Fast},
+                                                  {"adaptive", KernelKind::Adaptive},
+                                                  {"filtered", KernelKind::Filtered},
+                                                  {"exact", KernelKind::Exact}};
   const std::map<std::string, Bounding> boundings{{"infinite", Bounding::Infinite},
                                                   {"aux-tet", Bounding::AuxTet}};
 
@@ -38,7 +40,11 @@ int main(int argc, char** argv) {
   dtlab::cli::TriangulateArgs targs;
   auto* tri = app.add_subcommand("triangulate", "Delaunay tetrahedralization of a point set");
   tri->add_option("INPUT", targs.input, "point file or generator spec")->required();
-  tri->add_option("--predicates", targs.options.kernel, "fast | adaptive | exact")
+  tri->add_option("--predicates", targs.options.kernel,
+                  "fast | adaptive | filtered | exact (default adaptive). The search for the first "
+                  "tetrahedron and the test of the engine's interior point use the exact kernel "
+                  "whichever kernel is chosen (so the fast kernel's failure tables do not include "
+                  "those two steps)")
       ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
   const std::map<std::string, dtlab::engine::Method> methods{
       {"sequential", dtlab::engine::Method::Sequential},
@@ -86,7 +92,7 @@ int main(int argc, char** argv) {
       app.add_subcommand("predicates-audit", "predicate calls per stage while triangulating INPUT");
   audit->add_option("INPUT", input, "point file or generator spec")->required();
   audit->add_option("--seed", seed, "seed");
-  audit->add_option("--predicates", audit_kernel, "fast | adaptive | exact")
+  audit->add_option("--predicates", audit_kernel, "fast | adaptive | filtered | exact")
       ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
 
   try {

@@ -35,12 +35,14 @@ std::string name(const Configuration& c) {
 const std::vector<Configuration>& configurations() {
   static const std::vector<Configuration> all = [] {
     std::vector<Configuration> v{{KernelKind::Adaptive, Method::Sequential, 1},
+                                 {KernelKind::Filtered, Method::Sequential, 1},
                                  {KernelKind::Exact, Method::Sequential, 1},
                                  {KernelKind::Fast, Method::Sequential, 1}};
     for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
                            Method::Burglary, Method::Batch}) {
       for (const int threads : {1, 2, 4}) v.push_back({KernelKind::Adaptive, m, threads});
     }
+    v.push_back({KernelKind::Filtered, Method::OptimisticDetect, 2});
     v.push_back({KernelKind::Exact, Method::OptimisticDetect, 2});
     return v;
   }();
@@ -63,7 +65,8 @@ std::map<std::string, std::pair<int, int>>& fast_failures() {
   return table;
 }
 
-// The generic body: exact kernels must give a consistent Delaunay mesh (burglary: a sound mesh
+// The generic body: exact kernels (adaptive, filtered, exact) must give a consistent Delaunay mesh
+// for every input with a tetrahedralization (burglary: a sound mesh
 // after the run, Delaunay after --repair); the fast kernel must terminate, and the validator must
 // report whatever it got wrong.
 void check_configuration(const Configuration& config, const PointSetCase& c, std::uint64_t seed) {
@@ -93,11 +96,9 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
     }
     return;
   }
-  if (config.kernel == KernelKind::Adaptive && !engine::analyze(c.points).adaptive_range_ok) {
-    // Outside the adaptive kernel's exact range: a clear refusal, never a guess.
-    RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
-    return;
-  }
+  // adaptive, filtered and exact decide every finite double exactly (adaptive and filtered hand
+  // what their expansion arithmetic cannot take to GMP): every input with a tetrahedralization is
+  // triangulated, whatever its magnitudes.
   const auto result = engine::triangulate(c.points, options);
   const auto report = engine::validate(c.points, result.tetrahedra);
   RC_ASSERT(result.stats.abandoned_insertions == 0u);
@@ -114,7 +115,7 @@ RC_GTEST_PROP(EngineMatrix, EveryConfigurationOnEveryFamily, ()) {
 }
 
 // The perturbed Delaunay triangulation is unique, so the tetrahedra depend on neither the
-// insertion seed nor the kernel (adaptive vs exact), even for degenerate input.
+// insertion seed nor the exact kernel (adaptive, filtered, exact), even for degenerate input.
 RC_GTEST_PROP(Invariance, TetrahedraDoNotDependOnSeedOrExactKernel, ()) {
   const PointSetCase c = *point_set_case();
   RC_PRE(has_tetrahedralization(c.points));
@@ -123,8 +124,12 @@ RC_GTEST_PROP(Invariance, TetrahedraDoNotDependOnSeedOrExactKernel, ()) {
   engine::TriangulateOptions b = a;
   b.seed = a.seed + 1;
   b.kernel = KernelKind::Exact;
-  RC_ASSERT(canonical(engine::triangulate(c.points, a).tetrahedra) ==
-            canonical(engine::triangulate(c.points, b).tetrahedra));
+  engine::TriangulateOptions f = a;
+  f.seed = a.seed + 2;
+  f.kernel = KernelKind::Filtered;
+  const auto exact = canonical(engine::triangulate(c.points, b).tetrahedra);
+  RC_ASSERT(canonical(engine::triangulate(c.points, a).tetrahedra) == exact);
+  RC_ASSERT(canonical(engine::triangulate(c.points, f).tetrahedra) == exact);
 }
 
 // Translation by exactly representable offsets and scaling by powers of two keep the

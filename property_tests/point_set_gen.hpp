@@ -60,6 +60,11 @@ inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> 
       p = {p.x * 1e-150, p.y * 1e-150, p.z * 1e-150};
     } else if (family == "huge") {
       p = {p.x * 1e150, p.y * 1e150, p.z * 1e150};
+    } else if (family == "wide") {
+      // Magnitudes 2^1076 apart: some x are subnormal (exactly k * 2^-1074), so even after the
+      // engine's lossless scaling the input leaves the expansion range and the adaptive and
+      // filtered kernels must hand undecided calls to GMP. Nearly coplanar on x = 0 besides.
+      if (static_cast<int>(p.y) % 3 == 0) p.x = std::ldexp(p.x, -1074);
     } else if (family == "near-duplicates") {
       p.x += 1.0;  // away from 0, so that the neighbour 1 ulp up is not a denormal
       if (static_cast<int>(p.y) % 3 == 0) p.x = std::nextafter(p.x, 100.0);
@@ -70,9 +75,9 @@ inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> 
 }
 
 inline const std::vector<std::string>& families() {
-  static const std::vector<std::string> f{"uniform", "grid",       "planes",
-                                          "sphere",  "lattice",    "tiny",
-                                          "huge",    "duplicates", "near-duplicates"};
+  static const std::vector<std::string> f{"uniform",    "grid",           "planes", "sphere",
+                                          "lattice",    "tiny",           "huge",   "wide",
+                                          "duplicates", "near-duplicates"};
   return f;
 }
 

@@ -1,7 +1,7 @@
 // Every counterexample ever found, kept as an input named after what found it, replayed by an
 // ordinary test: property_tests/regressions/*.xyz (minimized point sets) and specs.txt (generator
-// specs with seed and kernel). Adaptive and exact results must validate; the fast kernel must
-// finish (its result may be invalid).
+// specs with seed and kernel). Adaptive, filtered and exact results must validate; the fast kernel
+// must finish (its result may be invalid).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -22,7 +22,8 @@ TEST(Regressions, AllKeptCounterexamplesValidate) {
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".xyz") continue;
     const auto points = io::read_points(entry.path().string());
-    for (const auto kernel : {engine::KernelKind::Adaptive, engine::KernelKind::Exact}) {
+    for (const auto kernel :
+         {engine::KernelKind::Adaptive, engine::KernelKind::Filtered, engine::KernelKind::Exact}) {
       engine::TriangulateOptions options;
       options.kernel = kernel;
       const auto report = engine::validate(points, engine::triangulate(points, options).tetrahedra);
@@ -52,9 +53,10 @@ TEST(Regressions, AllKeptCounterexamplesValidate) {
     const auto points = generators::generate(family, n, seed).points;
     engine::TriangulateOptions options;
     options.seed = seed;
-    options.kernel = kernel == "fast"    ? engine::KernelKind::Fast
-                     : kernel == "exact" ? engine::KernelKind::Exact
-                                         : engine::KernelKind::Adaptive;
+    options.kernel = kernel == "fast"       ? engine::KernelKind::Fast
+                     : kernel == "exact"    ? engine::KernelKind::Exact
+                     : kernel == "filtered" ? engine::KernelKind::Filtered
+                                            : engine::KernelKind::Adaptive;
     const auto result = engine::triangulate(points, options);
     EXPECT_EQ(result.stats.inserted + result.stats.duplicates + result.stats.abandoned_insertions,
               points.size());

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
@@ -113,20 +114,106 @@ TEST(BadInput, NoTetrahedralizationIsAnError) {
   EXPECT_EQ(r.stats.duplicates, 4u);
 }
 
-TEST(BadInput, MagnitudesBeyondTheAdaptiveRangeAreRefusedNotMisjudged) {
-  TriangulateOptions options;
-  const std::vector<Point3> wide{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e-300, 0.5, 0.5}};
-  EXPECT_THROW(engine::triangulate(wide, options), engine::TriangulationError);
-  options.kernel = engine::KernelKind::Exact;
-  const auto r = engine::triangulate(wide, options);
-  EXPECT_TRUE(engine::validate(wide, r.tetrahedra).valid());
-  // Uniformly tiny or huge inputs are rescaled exactly and triangulated.
-  options.kernel = engine::KernelKind::Adaptive;
+std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> tets) {
+  for (auto& t : tets) std::sort(t.begin(), t.end());
+  std::sort(tets.begin(), tets.end());
+  return tets;
+}
+
+TEST(RangeScaling, LosslessAndExpansionRangeByExponent) {
+  using engine::adaptive_range_scaling;
+  const engine::RangeScaling none = adaptive_range_scaling(0.0, 0.0);
+  EXPECT_EQ(none.exponent, 0);
+  EXPECT_TRUE(none.lossless);
+  EXPECT_TRUE(none.within_expansion_range);
+  const engine::RangeScaling unit = adaptive_range_scaling(1.0, 0.5);
+  EXPECT_EQ(unit.exponent, 99);
+  EXPECT_TRUE(unit.lossless);
+  EXPECT_TRUE(unit.within_expansion_range);
+  // The smallest subnormal next to 1: scaled by 2^99 it stays normal, but far below 2^-120.
+  const engine::RangeScaling denormal = adaptive_range_scaling(1.0, 4.94e-324);
+  EXPECT_EQ(denormal.exponent, 99);
+  EXPECT_TRUE(denormal.lossless);
+  EXPECT_FALSE(denormal.within_expansion_range);
+  // Lossless exactly while the scaled smallest magnitude stays >= 2^-1022.
+  EXPECT_TRUE(adaptive_range_scaling(0x1p47, 0x1p-1074).lossless);   // 2^-1074 * 2^52
+  EXPECT_FALSE(adaptive_range_scaling(0x1p48, 0x1p-1074).lossless);  // 2^-1074 * 2^51
+  EXPECT_FALSE(adaptive_range_scaling(1e300, 1e-300).lossless);
+  EXPECT_FALSE(adaptive_range_scaling(1e300, 1e-300).within_expansion_range);
+  // At the edges of the expansion range after scaling: 2^-120 inside, 2^-121 outside.
+  EXPECT_TRUE(adaptive_range_scaling(0x1p99, 0x1p-120).within_expansion_range);
+  EXPECT_FALSE(adaptive_range_scaling(0x1p99, 0x1p-121).within_expansion_range);
+}
+
+// adaptive, filtered and exact decide every finite double exactly (adaptive and filtered hand what
+// their expansion arithmetic cannot take to GMP): no input is refused for its magnitudes, and all
+// three give the same tetrahedra.
+TEST(WideMagnitudes, AreTriangulatedExactlyByEveryExactKernel) {
+  std::vector<std::pair<std::string, std::vector<Point3>>> cases;
+  cases.push_back(
+      {"1e-300 next to 1", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e-300, 0.5, 0.5}}});
+  // An 8^3 grid on [0,1]^3, one coordinate the smallest subnormal: scaled losslessly, outside
+  // the expansion range.
+  std::vector<Point3> grid;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      for (int k = 0; k < 8; ++k) grid.push_back({i / 7.0, j / 7.0, k / 7.0});
+    }
+  }
+  grid[0].x = 4.94e-324;
+  cases.push_back({"grid with a subnormal", grid});
+  // 1e300 next to subnormals: no lossless scaling exists, the points are taken as they are.
+  cases.push_back({"1e300 and subnormals",
+                   {{0, 0, 0},
+                    {1e300, 0, 0},
+                    {0, 1e300, 0},
+                    {0, 0, 1e300},
+                    {4.94e-324, 3e299, 3e299},
+                    {1e300, 1e300, 1e300},
+                    {1e-310, 1e300, 2e299},
+                    {5e299, 5e299, 1e-323}}});
+  for (const auto& [what, points] : cases) {
+    EXPECT_FALSE(engine::analyze(points).within_expansion_range) << what;
+    TriangulateOptions options;
+    options.kernel = engine::KernelKind::Exact;
+    const auto exact = engine::triangulate(points, options);
+    EXPECT_TRUE(engine::validate(points, exact.tetrahedra).valid()) << what;
+    for (const auto kernel : {engine::KernelKind::Adaptive, engine::KernelKind::Filtered}) {
+      options.kernel = kernel;
+      const auto r = engine::triangulate(points, options);
+      EXPECT_EQ(r.stats.inserted + r.stats.duplicates, points.size())
+          << what << " " << engine::to_string(kernel);
+      EXPECT_EQ(r.stats.scale_exponent, exact.stats.scale_exponent);
+      const auto report = engine::validate(points, r.tetrahedra);
+      EXPECT_TRUE(report.valid()) << what << " " << engine::to_string(kernel) << report.json();
+      EXPECT_EQ(canonical(r.tetrahedra), canonical(exact.tetrahedra))
+          << what << " " << engine::to_string(kernel);
+    }
+  }
+  EXPECT_EQ(engine::triangulate(grid, {}).stats.scale_exponent, 99);
+  EXPECT_EQ(engine::triangulate(cases.back().second, {}).stats.scale_exponent, 0);
+  // Uniformly tiny or huge inputs are rescaled exactly and stay in the expansion range.
   for (const std::string family : {"tiny", "huge"}) {
     const auto pts = generators::generate(family, 300, 3).points;
-    EXPECT_TRUE(engine::validate(pts, engine::triangulate(pts, options).tetrahedra).valid())
-        << family;
+    EXPECT_TRUE(engine::analyze(pts).within_expansion_range) << family;
+    for (const auto kernel : {engine::KernelKind::Adaptive, engine::KernelKind::Filtered}) {
+      TriangulateOptions options;
+      options.kernel = kernel;
+      EXPECT_TRUE(engine::validate(pts, engine::triangulate(pts, options).tetrahedra).valid())
+          << family << " " << engine::to_string(kernel);
+    }
   }
+}
+
+TEST(BadInput, AnAuxiliaryTetrahedronBeyondDoubleIsRefused) {
+  // Not scaled (no lossless scaling exists), and 200 x 1e307 overflows.
+  const std::vector<Point3> points{
+      {0, 0, 0}, {1e307, 0, 0}, {0, 1e307, 0}, {0, 0, 1e307}, {4.94e-324, 1e306, 1e306}};
+  TriangulateOptions options;
+  options.bounding = engine::Bounding::AuxTet;
+  EXPECT_THROW(engine::triangulate(points, options), engine::TriangulationError);
+  options.bounding = engine::Bounding::Infinite;
+  EXPECT_TRUE(engine::validate(points, engine::triangulate(points, options).tetrahedra).valid());
 }
 
 TEST(FastKernel, NeverCrashesAndTheValidatorReports) {

@@ -1,9 +1,10 @@
-// The adaptive kernel against the exact one, sign symmetries, symbolic perturbation, and the
-// fast kernel's disagreement rate (measured and printed, not asserted).
+// The adaptive and filtered kernels against the exact one, the stage each input stops in, sign
+// symmetries, symbolic perturbation, and the fast kernel's inexactness.
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <random>
 
@@ -18,40 +19,66 @@ namespace {
 using predicates::AdaptiveKernel;
 using predicates::ExactKernel;
 using predicates::FastKernel;
+using predicates::FilteredKernel;
+using predicates::Stage;
 
+// Both robust kernels must agree with GMP on everything.
 void expect_orient_agrees(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  RC_ASSERT(AdaptiveKernel::orient3d(a, b, c, d) == ExactKernel::orient3d(a, b, c, d));
+  const int exact = ExactKernel::orient3d(a, b, c, d);
+  RC_ASSERT(AdaptiveKernel::orient3d(a, b, c, d) == exact);
+  RC_ASSERT(FilteredKernel::orient3d(a, b, c, d) == exact);
 }
 void expect_insphere_agrees(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                             const Point3& e) {
-  RC_ASSERT(AdaptiveKernel::insphere(a, b, c, d, e) == ExactKernel::insphere(a, b, c, d, e));
+  const int exact = ExactKernel::insphere(a, b, c, d, e);
+  RC_ASSERT(AdaptiveKernel::insphere(a, b, c, d, e) == exact);
+  RC_ASSERT(FilteredKernel::insphere(a, b, c, d, e) == exact);
+}
+void expect_planar_agrees(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  for (int drop = 0; drop < 3; ++drop) {
+    const int o = ExactKernel::orient2d(a, b, c, drop);
+    RC_ASSERT(AdaptiveKernel::orient2d(a, b, c, drop) == o);
+    RC_ASSERT(FilteredKernel::orient2d(a, b, c, drop) == o);
+    const int in = ExactKernel::incircle_lifted(a, b, c, d, drop);
+    RC_ASSERT(AdaptiveKernel::incircle_lifted(a, b, c, d, drop) == in);
+    RC_ASSERT(FilteredKernel::incircle_lifted(a, b, c, d, drop) == in);
+  }
+}
+void expect_centroid_agrees(const Point3& a, const Point3& b, const Point3& c,
+                            const predicates::Tetrahedron4& v) {
+  const int exact = ExactKernel::orient3d_centroid(a, b, c, v);
+  RC_ASSERT(AdaptiveKernel::orient3d_centroid(a, b, c, v) == exact);
+  RC_ASSERT(FilteredKernel::orient3d_centroid(a, b, c, v) == exact);
 }
 
-RC_GTEST_PROP(AdaptiveVsExact, RandomPoints, ()) {
+RC_GTEST_PROP(RobustVsExact, RandomPoints, ()) {
   const auto p = *rc::gen::container<std::vector<Point3>>(5, unit_point());
   expect_orient_agrees(p[0], p[1], p[2], p[3]);
   expect_insphere_agrees(p[0], p[1], p[2], p[3], p[4]);
+  expect_planar_agrees(p[0], p[1], p[2], p[3]);
+  expect_centroid_agrees(p[0], p[1], p[2], {p[1], p[2], p[3], p[4]});
 }
 
-RC_GTEST_PROP(AdaptiveVsExact, GridPointsWithTies, ()) {
+RC_GTEST_PROP(RobustVsExact, GridPointsWithTies, ()) {
   const auto p = *rc::gen::container<std::vector<Point3>>(5, grid_point());
   expect_orient_agrees(p[0], p[1], p[2], p[3]);
   expect_insphere_agrees(p[0], p[1], p[2], p[3], p[4]);
-  for (int drop = 0; drop < 3; ++drop) {
-    RC_ASSERT(AdaptiveKernel::orient2d(p[0], p[1], p[2], drop) ==
-              ExactKernel::orient2d(p[0], p[1], p[2], drop));
-  }
+  expect_planar_agrees(p[0], p[1], p[2], p[3]);
+  expect_centroid_agrees(p[0], p[1], p[2], {p[1], p[2], p[3], p[4]});
 }
 
-RC_GTEST_PROP(AdaptiveVsExact, NearlyCoplanar, ()) {
+RC_GTEST_PROP(RobustVsExact, NearlyCoplanar, ()) {
   const auto p = *rc::gen::container<std::vector<Point3>>(3, unit_point());
   const double s = *unit_double();
   const double t = *unit_double();
   const int ulps = *rc::gen::inRange(-3, 4);
-  expect_orient_agrees(p[0], p[1], p[2], near_plane(p[0], p[1], p[2], s, t, ulps));
+  const Point3 q = near_plane(p[0], p[1], p[2], s, t, ulps);
+  expect_orient_agrees(p[0], p[1], p[2], q);
+  expect_planar_agrees(p[0], p[1], p[2], q);
+  expect_centroid_agrees(p[0], p[1], p[2], {q, q, q, near_plane(p[0], p[1], p[2], t, s, -ulps)});
 }
 
-RC_GTEST_PROP(AdaptiveVsExact, NearlyCospherical, ()) {
+RC_GTEST_PROP(RobustVsExact, NearlyCospherical, ()) {
   const Point3 centre = *unit_point();
   const double r = 0.25 + *unit_double();
   std::array<Point3, 5> p{};
@@ -60,8 +87,8 @@ RC_GTEST_PROP(AdaptiveVsExact, NearlyCospherical, ()) {
   expect_insphere_agrees(p[0], p[1], p[2], p[3], p[4]);
 }
 
-RC_GTEST_PROP(AdaptiveVsExact, LargeOffsetsAndTinyScales, ()) {
-  const int offset_exponent = *rc::gen::inRange(30, 41);
+RC_GTEST_PROP(RobustVsExact, LargeOffsetsAndTinyScales, ()) {
+  const int offset_exponent = *rc::gen::inRange(30, 62);
   const int scale_exponent = *rc::gen::inRange(-100, 60);
   const double offset = std::ldexp(1.0, offset_exponent);
   auto p = *rc::gen::container<std::vector<Point3>>(5, grid_point());
@@ -71,7 +98,6 @@ RC_GTEST_PROP(AdaptiveVsExact, LargeOffsetsAndTinyScales, ()) {
   }
   expect_orient_agrees(p[0], p[1], p[2], p[3]);
   expect_insphere_agrees(p[0], p[1], p[2], p[3], p[4]);
-  // Points near a sphere far from the origin: rounded differences, tails, stage C and D.
   const Point3 centre{offset * 0.75, offset * 0.5, offset * 0.25};
   std::array<Point3, 5> s{};
   for (auto& q : s)
@@ -79,18 +105,22 @@ RC_GTEST_PROP(AdaptiveVsExact, LargeOffsetsAndTinyScales, ()) {
   expect_insphere_agrees(s[0], s[1], s[2], s[3], s[4]);
 }
 
-RC_GTEST_PROP(AdaptiveVsExact, CoplanarLiftedIncircle, ()) {
-  // Integer points on the plane z = x + 2y, so the lifted in-circle test sees exact ties.
-  std::array<Point3, 4> p{};
-  for (auto& q : p) {
-    const double x = *rc::gen::inRange(-4, 5);
-    const double y = *rc::gen::inRange(-4, 5);
-    q = {x, y, x + 2 * y};
-  }
-  for (int drop = 0; drop < 3; ++drop) {
-    RC_ASSERT(AdaptiveKernel::incircle_lifted(p[0], p[1], p[2], p[3], drop) ==
-              ExactKernel::incircle_lifted(p[0], p[1], p[2], p[3], drop));
-  }
+// Every finite double: subnormal, tiny, huge and mixed coordinates.
+RC_GTEST_PROP(RobustVsExact, EveryFiniteDouble, ()) {
+  const auto extreme = rc::gen::map(
+      rc::gen::pair(unit_double(), rc::gen::element(0x1p-1074, 0x1p-1060, 1e-300, 1e-150, 1.0,
+                                                    1e150, 0x1p900, 0x1p1000)),
+      [](const std::pair<double, double>& v) { return v.first * v.second; });
+  const auto point = rc::gen::apply(
+      [](double x, double y, double z) {
+        return Point3{x, y, z};
+      },
+      extreme, extreme, extreme);
+  const auto p = *rc::gen::container<std::vector<Point3>>(5, point);
+  expect_orient_agrees(p[0], p[1], p[2], p[3]);
+  expect_insphere_agrees(p[0], p[1], p[2], p[3], p[4]);
+  expect_planar_agrees(p[0], p[1], p[2], p[3]);
+  expect_centroid_agrees(p[0], p[1], p[2], {p[1], p[2], p[3], p[4]});
 }
 
 RC_GTEST_PROP(Symmetry, PermutationsFlipOrKeepSign, ()) {
@@ -131,6 +161,7 @@ RC_GTEST_PROP(Perturbation, NeverZeroAndAntisymmetric, ()) {
   RC_ASSERT(predicates::insphere_perturbed<AdaptiveKernel>(p[1], p[0], p[2], p[3], p[4]) == -s);
   RC_ASSERT(predicates::insphere_perturbed<AdaptiveKernel>(p[0], p[1], p[3], p[2], p[4]) == -s);
   RC_ASSERT(predicates::insphere_perturbed<ExactKernel>(p[0], p[1], p[2], p[3], p[4]) == s);
+  RC_ASSERT(predicates::insphere_perturbed<FilteredKernel>(p[0], p[1], p[2], p[3], p[4]) == s);
   if (predicates::insphere_perturbed<AdaptiveKernel>(p[0], p[1], p[2], p[4], p[3]) != 0) {
     RC_ASSERT(predicates::insphere_perturbed<AdaptiveKernel>(p[0], p[1], p[2], p[4], p[3]) == -s);
   }
@@ -150,53 +181,218 @@ RC_GTEST_PROP(Perturbation, InfiniteCellNeverZero, ()) {
   const int s = predicates::infinite_insphere_perturbed<AdaptiveKernel>(p[0], p[1], p[2], p[3]);
   RC_ASSERT(s != 0);
   RC_ASSERT(s == predicates::infinite_insphere_perturbed<ExactKernel>(p[0], p[1], p[2], p[3]));
+  RC_ASSERT(s == predicates::infinite_insphere_perturbed<FilteredKernel>(p[0], p[1], p[2], p[3]));
 }
 
-TEST(Expansion, TwoProductAndSumAreExact) {
-  double x = 0;
-  double y = 0;
-  predicates::expansion::two_product(1.0 + 0x1p-30, 1.0 + 0x1p-29, x, y);
-  EXPECT_EQ(x, 1.0 + 0x1p-30 + 0x1p-29);
-  EXPECT_EQ(y, 0x1p-59);
-  predicates::expansion::two_sum(1.0, 0x1p-60, x, y);
-  EXPECT_EQ(x, 1.0);
-  EXPECT_EQ(y, 0x1p-60);
+TEST(Expansion, PrimitivesAreExact) {
+  namespace ex = predicates::expansion;
+  const ex::Exact2 p = ex::product(1.0 + 0x1p-30, 1.0 + 0x1p-29);
+  EXPECT_EQ(p.hi, 1.0 + 0x1p-30 + 0x1p-29);
+  EXPECT_EQ(p.lo, 0x1p-59);
+  const ex::Exact2 s = ex::sum_any(0x1p-60, 1.0);
+  EXPECT_EQ(s.hi, 1.0);
+  EXPECT_EQ(s.lo, 0x1p-60);
+  const ex::Exact2 d = ex::difference(1.0, 0x1p-60);
+  EXPECT_EQ(d.hi, 1.0);
+  EXPECT_EQ(d.lo, -0x1p-60);
+  // 1 + 2^-40 + 2^-80 as three components; compressed, the top one carries 1 + 2^-40.
   double e[3] = {0x1p-80, 0x1p-40, 1.0};
   double h[3];
-  const int n = predicates::expansion::compress(3, e, h);
-  EXPECT_EQ(predicates::expansion::estimate(n, h), 1.0 + 0x1p-40 + 0x1p-80);
+  const int n = ex::compress(e, 3, h);
   EXPECT_EQ(h[n - 1], 1.0 + 0x1p-40);
+  EXPECT_EQ(ex::approximate(h, n), 1.0 + 0x1p-40 + 0x1p-80);
+  // (1 + 2^-60) * 3 exactly: 3 + 3 * 2^-60.
+  double one_plus[2] = {0x1p-60, 1.0};
+  double scaled[4];
+  const int ns = ex::scale(one_plus, 2, 3.0, scaled);
+  EXPECT_EQ(ex::approximate(scaled, ns), 3.0);  // the sum rounds, the components do not
+  EXPECT_EQ(scaled[ns - 1], 3.0);
+  EXPECT_EQ(scaled[0], 3 * 0x1p-60);
+  double sum[6];
+  double minus_three[1] = {-3.0};
+  const int nsum = ex::add(scaled, ns, minus_three, 1, sum);
+  EXPECT_EQ(sum[nsum - 1], 3 * 0x1p-60);
 }
 
-TEST(Stages, NearDegenerateInputsReachTheExactStages) {
-  // Integer points exactly on a plane far from the origin: only stage D can decide after the
-  // differences are rounded (offset 2^60 + small).
-  const double off = 0x1p60;
-  const Point3 a{off, 0, 0}, b{0, off, 0}, c{0, 0, off}, d{off / 2, off / 2, 0};
-  const auto s = AdaptiveKernel::orient3d_staged(a, b, c, d);
-  EXPECT_EQ(s.sign, ExactKernel::orient3d(a, b, c, d));
-  EXPECT_NE(s.stage, predicates::Stage::A);
+// Hand-built inputs that stop in each stage: points on the plane x + y + z = 2^60 + 1 whose
+// coordinate differences (e.g. 1 - 2^60) are not representable, so every difference has a tail;
+// d is lifted off the plane by dz. The smaller dz, the later the stage that can decide.
+struct StageCase {
+  double offset;  // dz for orient3d, 2^j for insphere
+  Stage stage;
+};
+
+TEST(Stages, Orient3dStopsInEachStage) {
+  const double big = 0x1p60;
+  const Point3 a{big, 0, 1}, b{1, big, 0}, c{0, 1, big};
+  for (const StageCase& k :
+       {StageCase{0x1p-10, Stage::A}, StageCase{0x1p-50, Stage::B}, StageCase{0x1p-60, Stage::C},
+        StageCase{0x1p-95, Stage::C}, StageCase{0x1p-100, Stage::D}, StageCase{0.0, Stage::D},
+        StageCase{-0x1p-100, Stage::D}}) {
+    const Point3 d{big, 1, k.offset};
+    const predicates::StagedSign s = AdaptiveKernel::orient3d_staged(a, b, c, d);
+    EXPECT_EQ(s.stage, k.stage) << "dz = " << k.offset;
+    EXPECT_EQ(s.sign, ExactKernel::orient3d(a, b, c, d)) << "dz = " << k.offset;
+    EXPECT_EQ(s.sign, k.offset > 0 ? 1 : (k.offset < 0 ? -1 : 0));
+  }
+  // Exact differences (small integers): a tie fails stage A and is settled exactly in stage B.
+  const Point3 p{0, 0, 0}, q{1, 0, 0}, r{0, 1, 0}, t{3, 2, 0};
+  const predicates::StagedSign tie = AdaptiveKernel::orient3d_staged(p, q, r, t);
+  EXPECT_EQ(tie.stage, Stage::B);
+  EXPECT_EQ(tie.sign, 0);
 }
 
-// fast vs exact: measured and printed, not asserted (wrong signs are what dtlab studies). The
-// same inputs pin the adaptive kernel to zero wrong signs.
-TEST(FastKernel, DisagreementIsMeasured) {
+// Points with |p|^2 = 2^120 + 1 (cospherical; differences such as 2^60 - 1 have tails) and a fifth
+// point e = (2^j, -2^60, 0), outside by about 2^(2j) for j >= 1 and on the sphere for j = 0.
+TEST(Stages, InsphereStopsInEachStage) {
+  const double big = 0x1p60;
+  const Point3 p0{big, 1, 0}, p1{1, 0, big}, p2{0, big, 1}, p3{-big, 0, 1};
+  ASSERT_EQ(ExactKernel::orient3d(p0, p1, p2, p3), 1);
+  for (const StageCase& k :
+       {StageCase{0x1p45, Stage::A}, StageCase{0x1p36, Stage::C}, StageCase{0x1p15, Stage::C},
+        StageCase{0x1p12, Stage::D}, StageCase{0x1p3, Stage::D}, StageCase{1.0, Stage::D}}) {
+    const Point3 e{k.offset, -big, 0};
+    const predicates::StagedSign s = AdaptiveKernel::insphere_staged(p0, p1, p2, p3, e);
+    EXPECT_EQ(s.stage, k.stage) << "e.x = " << k.offset;
+    EXPECT_EQ(s.sign, ExactKernel::insphere(p0, p1, p2, p3, e)) << "e.x = " << k.offset;
+    EXPECT_EQ(s.sign, k.offset > 1.0 ? -1 : 0);  // outside, or on the sphere
+  }
+  // Cube corners are cospherical; exact differences make stage B exact. Nudged by 2^-50 off the
+  // sphere, stage A cannot see it (bound about 15 eps times the permanent) but B can.
+  const Point3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  const predicates::StagedSign on = AdaptiveKernel::insphere_staged(o, x, y, z, {1, 1, 1});
+  EXPECT_EQ(on.stage, Stage::B);
+  EXPECT_EQ(on.sign, 0);
+  const Point3 near{1, 1, 1 + 0x1p-50};
+  const predicates::StagedSign off = AdaptiveKernel::insphere_staged(o, x, y, z, near);
+  EXPECT_EQ(off.stage, Stage::B);
+  EXPECT_EQ(off.sign, ExactKernel::insphere(o, x, y, z, near));
+  EXPECT_EQ(off.sign, -1);
+}
+
+// A coordinate outside the expansion range (here subnormal) with a tie that stage A cannot
+// decide: the call goes to GMP, and both robust kernels still answer exactly.
+TEST(Stages, OutsideTheExpansionRangeGmpDecides) {
+  const double tiny = 0x1p-1070;
+  const Point3 a{0, 0, 0}, b{tiny, 0, 0}, c{0, tiny, 0}, d{3 * tiny, 5 * tiny, 0};
+  const predicates::StagedSign o = AdaptiveKernel::orient3d_staged(a, b, c, d);
+  EXPECT_EQ(o.stage, Stage::Gmp);
+  EXPECT_EQ(o.sign, 0);
+  const predicates::StagedSign f = FilteredKernel::orient3d_staged(a, b, c, {tiny, tiny, tiny});
+  EXPECT_EQ(f.stage, Stage::Gmp);
+  EXPECT_EQ(f.sign, 1);
+  const Point3 e{tiny, tiny, tiny};
+  const Point3 top{0, 0, tiny};
+  const predicates::StagedSign s = AdaptiveKernel::insphere_staged(a, b, c, top, e);
+  EXPECT_EQ(s.stage, Stage::Gmp);
+  EXPECT_EQ(s.sign, 0);  // the cube's corners are cospherical
+  // A denormal next to 1: stage A still decides a clear case (Lemma 4), exactly.
+  const Point3 unit_x{1, 0, 0}, unit_y{0, 1, 0}, unit_z{0x1p-1074, 0, 1};
+  const predicates::StagedSign clear = AdaptiveKernel::orient3d_staged(a, unit_x, unit_y, unit_z);
+  EXPECT_EQ(clear.stage, Stage::A);
+  EXPECT_EQ(clear.sign, 1);
+}
+
+TEST(Stages, PlanarPredicatesAndCentroid) {
+  // A clear in-circle case is decided by the filter; cocircular points need the exact stage.
+  const Point3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_EQ(AdaptiveKernel::incircle_lifted_staged(a, b, c, {0.25, 0.25, 0}, 2).stage, Stage::A);
+  const predicates::StagedSign on = AdaptiveKernel::incircle_lifted_staged(a, b, c, {1, 1, 0}, 2);
+  EXPECT_EQ(on.stage, Stage::D);
+  EXPECT_EQ(on.sign, 0);
+  const predicates::Tetrahedron4 flat{a, b, c, Point3{1, 1, 0}};
+  const predicates::StagedSign centroid = AdaptiveKernel::orient3d_centroid_staged(a, b, c, flat);
+  EXPECT_EQ(centroid.stage, Stage::D);
+  EXPECT_EQ(centroid.sign, 0);
+  EXPECT_EQ(FilteredKernel::orient3d_centroid_staged(a, b, c, flat).sign, 0);
+}
+
+// The stage histogram of a RapidCheck run over families built to reach each stage: every stage
+// must be reached a minimum number of times, and every answer must be exact.
+struct Histogram {
+  std::array<int, predicates::kStageCount> orient{};
+  std::array<int, predicates::kStageCount> insphere{};
+  void print() const {
+    std::printf("stage histogram     A      B      C      D    gmp\n");
+    std::printf("orient3d      %6d %6d %6d %6d %6d\n", orient[0], orient[1], orient[2], orient[3],
+                orient[4]);
+    std::printf("insphere      %6d %6d %6d %6d %6d\n", insphere[0], insphere[1], insphere[2],
+                insphere[3], insphere[4]);
+  }
+};
+
+// Plane and sphere points of mixed magnitude (big = 2^k, k in 55..62), as in Stages.* above, with
+// a random offset; small-integer ties; subnormal ties.
+TEST(StageHistogram, PropertyRunReachesEveryStage) {
+  Histogram h;
+  const bool ok = rc::check("every stage answers exactly", [&h] {
+    const double big = std::ldexp(1.0, *rc::gen::inRange(55, 63));
+    const int family = *rc::gen::inRange(0, 3);
+    if (family == 0) {  // mixed magnitudes: A, B, C, D
+      const Point3 a{big, 0, 1}, b{1, big, 0}, c{0, 1, big};
+      const double dz =
+          *rc::gen::element(0.0, 1.0, -1.0) * std::ldexp(1.0, -*rc::gen::inRange(0, 120));
+      const Point3 d{big, 1, dz};
+      const auto s = AdaptiveKernel::orient3d_staged(a, b, c, d);
+      RC_ASSERT(s.sign == ExactKernel::orient3d(a, b, c, d));
+      ++h.orient[static_cast<int>(s.stage)];
+      const Point3 p0{big, 1, 0}, p1{1, 0, big}, p2{0, big, 1}, p3{-big, 0, 1};
+      const Point3 e{std::ldexp(1.0, *rc::gen::inRange(0, 50)), -big, 0};
+      const auto t = AdaptiveKernel::insphere_staged(p0, p1, p2, p3, e);
+      RC_ASSERT(t.sign == ExactKernel::insphere(p0, p1, p2, p3, e));
+      ++h.insphere[static_cast<int>(t.stage)];
+    } else {  // small-integer ties (B), or the same scaled into the subnormals (Gmp)
+      const double unit = family == 1 ? 1.0 : 0x1p-1068;
+      auto p = *rc::gen::container<std::vector<Point3>>(5, grid_point());
+      for (auto& q : p) q = {q.x * unit, q.y * unit, q.z * unit};
+      const auto s = AdaptiveKernel::orient3d_staged(p[0], p[1], p[2], p[3]);
+      RC_ASSERT(s.sign == ExactKernel::orient3d(p[0], p[1], p[2], p[3]));
+      ++h.orient[static_cast<int>(s.stage)];
+      const auto t = AdaptiveKernel::insphere_staged(p[0], p[1], p[2], p[3], p[4]);
+      RC_ASSERT(t.sign == ExactKernel::insphere(p[0], p[1], p[2], p[3], p[4]));
+      ++h.insphere[static_cast<int>(t.stage)];
+    }
+  });
+  h.print();
+  EXPECT_TRUE(ok);
+  for (int stage = 0; stage < predicates::kStageCount; ++stage) {
+    EXPECT_GE(h.orient[stage], 3) << "orient3d never stopped in stage "
+                                  << predicates::stage_name(static_cast<Stage>(stage));
+    EXPECT_GE(h.insphere[stage], 3)
+        << "insphere never stopped in stage " << predicates::stage_name(static_cast<Stage>(stage));
+  }
+}
+
+// The fast kernel must really be inexact: near-cospherical and near-coplanar rounded points give
+// it wrong signs (a fast kernel quietly upgraded to an exact one fails here). The same inputs pin
+// the robust kernels to zero wrong signs.
+TEST(FastKernel, GetsSignsWrongOnSphereAndPlane) {
   std::mt19937_64 rng(12345);
   auto unit = [&] { return std::ldexp(static_cast<double>(rng() >> 11), -53); };
-  int fast_wrong = 0;
-  int adaptive_wrong = 0;
+  int fast_wrong_insphere = 0;
+  int fast_wrong_orient = 0;
+  int robust_wrong = 0;
   const int total = 20000;
+  const Point3 centre{0.5, 0.5, 0.5};
   for (int i = 0; i < total; ++i) {
-    const Point3 a{unit(), unit(), unit()}, b{unit(), unit(), unit()}, c{unit(), unit(), unit()};
-    const Point3 q = near_plane(a, b, c, unit(), unit(), i % 5 - 2);
-    const int exact = ExactKernel::orient3d(a, b, c, q);
-    if (FastKernel::orient3d(a, b, c, q) != exact) ++fast_wrong;
-    if (AdaptiveKernel::orient3d(a, b, c, q) != exact) ++adaptive_wrong;
+    std::array<Point3, 5> s{};
+    for (auto& q : s) q = near_sphere(centre, 0.5, unit(), unit(), 0);
+    const int exact = ExactKernel::insphere(s[0], s[1], s[2], s[3], s[4]);
+    if (FastKernel::insphere(s[0], s[1], s[2], s[3], s[4]) != exact) ++fast_wrong_insphere;
+    if (AdaptiveKernel::insphere(s[0], s[1], s[2], s[3], s[4]) != exact) ++robust_wrong;
+    if (FilteredKernel::insphere(s[0], s[1], s[2], s[3], s[4]) != exact) ++robust_wrong;
+    const Point3 q = near_plane(s[0], s[1], s[2], unit(), unit(), i % 5 - 2);
+    const int o = ExactKernel::orient3d(s[0], s[1], s[2], q);
+    if (FastKernel::orient3d(s[0], s[1], s[2], q) != o) ++fast_wrong_orient;
+    if (AdaptiveKernel::orient3d(s[0], s[1], s[2], q) != o) ++robust_wrong;
+    if (FilteredKernel::orient3d(s[0], s[1], s[2], q) != o) ++robust_wrong;
   }
   std::printf(
-      "orient3d within 2 ulps of a plane: fast %d of %d signs wrong (%.1f%%), adaptive %d\n",
-      fast_wrong, total, 100.0 * fast_wrong / total, adaptive_wrong);
-  EXPECT_EQ(adaptive_wrong, 0);
+      "fast kernel, %d rounded near-degenerate cases: insphere %d wrong, orient3d %d wrong\n",
+      total, fast_wrong_insphere, fast_wrong_orient);
+  EXPECT_GT(fast_wrong_insphere, 0);
+  EXPECT_GT(fast_wrong_orient, 0);
+  EXPECT_EQ(robust_wrong, 0);
 }
 
 }  // namespace

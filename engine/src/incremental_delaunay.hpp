@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -62,10 +63,13 @@ class IncrementalDelaunay {
     if (o < 0) std::swap(a, b);
     // O as a plain point when the rounded centroid lies strictly inside the first tetrahedron
     // (checked exactly): one orient3d instead of four. Otherwise O stays the symbolic centroid.
+    // (The sum can overflow only for unscaled input near DBL_MAX; then O stays symbolic.)
     const Point3 rounded{(pa.x + pb.x + pc.x + pd.x) / 4, (pa.y + pb.y + pc.y + pd.y) / 4,
                          (pa.z + pb.z + pc.z + pd.z) / 4};
     const Point3 &qa = mesh_.points[a], &qb = mesh_.points[b];
-    mesh_.origin_is_point = predicates::ExactKernel::orient3d(rounded, qb, pc, pd) > 0 &&
+    mesh_.origin_is_point = std::isfinite(rounded.x) && std::isfinite(rounded.y) &&
+                            std::isfinite(rounded.z) &&
+                            predicates::ExactKernel::orient3d(rounded, qb, pc, pd) > 0 &&
                             predicates::ExactKernel::orient3d(qa, rounded, pc, pd) > 0 &&
                             predicates::ExactKernel::orient3d(qa, qb, rounded, pd) > 0 &&
                             predicates::ExactKernel::orient3d(qa, qb, pc, rounded) > 0;

@@ -20,9 +20,11 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
 #define DTLAB_FOR_EACH_KERNEL(X)                     \
   X(predicates::FastKernel)                          \
   X(predicates::AdaptiveKernel)                      \
+  X(predicates::FilteredKernel)                      \
   X(predicates::ExactKernel)                         \
   X(predicates::Audited<predicates::FastKernel>)     \
   X(predicates::Audited<predicates::AdaptiveKernel>) \
+  X(predicates::Audited<predicates::FilteredKernel>) \
   X(predicates::Audited<predicates::ExactKernel>)
 
 // The sequential engine on the same arguments (engine/src/triangulate.cpp).

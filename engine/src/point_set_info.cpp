@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dtlab/predicates/kernels.hpp"
 #include "dtlab/predicates/valid_range.hpp"
@@ -46,12 +47,17 @@ SimplexSearch find_simplex(const std::vector<Point3>& points,
 RangeScaling adaptive_range_scaling(double max_abs, double min_abs_nonzero) {
   RangeScaling r;
   if (max_abs == 0.0) return r;
-  r.exponent = predicates::kScaledMaxExponent - 1 - std::ilogb(max_abs);
-  if (min_abs_nonzero > 0.0) {
-    // Compare exponents, not scaled values: the scaled value could underflow.
-    const int scaled_min_exponent = std::ilogb(min_abs_nonzero) + r.exponent;
-    r.fits = scaled_min_exponent >= predicates::kRangeMinExponent;
-  }
+  // Compare exponents, not scaled values: a scaled value could underflow or overflow.
+  const int max_exponent = std::ilogb(max_abs);
+  r.exponent = predicates::kScaledMaxExponent - 1 - max_exponent;
+  const int min_exponent = min_abs_nonzero > 0.0 ? std::ilogb(min_abs_nonzero) : max_exponent;
+  // Lossless iff the scaled smallest magnitude stays >= 2^-1022, the smallest normal double.
+  r.lossless = min_exponent + r.exponent >= std::numeric_limits<double>::min_exponent - 1;
+  // Unscaled, |c| <= 2^kRangeMaxExponent iff its exponent is below it, or c is that power.
+  const bool max_in_range = r.lossless || max_exponent < predicates::kRangeMaxExponent ||
+                            max_abs == std::ldexp(1.0, predicates::kRangeMaxExponent);
+  const int shift = r.lossless ? r.exponent : 0;
+  r.within_expansion_range = max_in_range && min_exponent + shift >= predicates::kRangeMinExponent;
   return r;
 }
 
@@ -79,7 +85,8 @@ PointSetInfo analyze(const std::vector<Point3>& points) {
   std::vector<std::uint32_t> order(points.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   info.dimension = find_simplex(points, order).dimension;
-  info.adaptive_range_ok = adaptive_range_scaling(info.max_abs, info.min_abs_nonzero).fits;
+  info.within_expansion_range =
+      adaptive_range_scaling(info.max_abs, info.min_abs_nonzero).within_expansion_range;
   return info;
 }
 

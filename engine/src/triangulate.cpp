@@ -15,7 +15,6 @@
 #include "dtlab/generators/random.hpp"
 #include "dtlab/predicates/audit.hpp"
 #include "dtlab/predicates/kernels.hpp"
-#include "dtlab/predicates/valid_range.hpp"
 #include "incremental_delaunay.hpp"
 #include "parallel_methods.hpp"
 
@@ -136,6 +135,9 @@ std::vector<Tetrahedron> dispatch(const std::vector<Point3>& points, std::size_t
     case KernelKind::Fast:
       return run_kernel<predicates::FastKernel>(points, input_count, order, first, skip_first,
                                                 options, stats);
+    case KernelKind::Filtered:
+      return run_kernel<predicates::FilteredKernel>(points, input_count, order, first, skip_first,
+                                                    options, stats);
     case KernelKind::Exact:
       return run_kernel<predicates::ExactKernel>(points, input_count, order, first, skip_first,
                                                  options, stats);
@@ -161,6 +163,8 @@ const char* to_string(KernelKind k) {
       return "fast";
     case KernelKind::Adaptive:
       return "adaptive";
+    case KernelKind::Filtered:
+      return "filtered";
     case KernelKind::Exact:
       return "exact";
   }
@@ -212,9 +216,11 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     throw TriangulationError("too many points for 32-bit vertex ids");
   }
 
-  // Exact power-of-two scaling into the adaptive kernel's valid range (signs are unchanged).
-  // Applied for every kernel when it is lossless, so that all kernels see the same numbers; the
-  // adaptive kernel refuses input that does not fit, the others take it as it is.
+  // Exact power-of-two scaling of the largest magnitude into [2^99, 2^100) (signs are unchanged),
+  // for every kernel when it is lossless, so that all kernels see the same numbers. Every input is
+  // taken: when some coordinates still lie outside the range where expansion arithmetic is exact
+  // (valid_range.hpp), the adaptive and filtered kernels hand the calls their float stage cannot
+  // decide to GMP.
   std::vector<Point3> points = input;
   double max_abs = 0.0;
   double min_abs = 0.0;
@@ -227,17 +233,7 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     }
   }
   const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
-  if (!scaling.fits && options.kernel == KernelKind::Adaptive) {
-    char message[320];
-    std::snprintf(message, sizeof message,
-                  "coordinate magnitudes span %.3g .. %.3g, more than the adaptive kernel can "
-                  "decide exactly (ratio above 2^%d, see docs/predicates.md); use "
-                  "--predicates exact",
-                  min_abs, max_abs,
-                  predicates::kScaledMaxExponent - 1 - predicates::kRangeMinExponent);
-    throw TriangulationError(message);
-  }
-  if (scaling.fits) {
+  if (scaling.lossless) {
     stats.scale_exponent = scaling.exponent;
     for (Point3& p : points) {
       p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
@@ -274,6 +270,15 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     points.push_back({c.x, c.y + m, c.z});
     points.push_back({c.x, c.y, c.z + m});
     points.push_back({c.x - m, c.y - m, c.z - m});
+    // Only reachable when the scaling was not lossless and the magnitudes are near DBL_MAX.
+    for (std::size_t i = n; i < points.size(); ++i) {
+      if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) ||
+          !std::isfinite(points[i].z)) {
+        throw TriangulationError(
+            "the auxiliary tetrahedron (200 x the bounding box) overflows double; use "
+            "--bounding infinite");
+      }
+    }
     result.tetrahedra =
         dispatch(points, input.size(), order, {n, n + 1, n + 2, n + 3}, false, options, stats);
   }

@@ -241,18 +241,20 @@ ValidationReport validate(const std::vector<Point3>& points, const std::vector<T
       if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
     }
   }
+  // The adaptive kernel is exact for every finite double (GMP fallback outside the expansion
+  // range); the same lossless power-of-two scaling as the engine keeps most calls off that path.
+  // Non-finite points are refused by the readers and by triangulate().
   const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
-  if (finite && scaling.fits) {
+  r.kernel = "adaptive";
+  if (finite && scaling.lossless) {
     std::vector<Point3> scaled = points;
     for (Point3& p : scaled) {
       p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
            std::ldexp(p.z, scaling.exponent)};
     }
-    r.kernel = "adaptive";
     check<predicates::AdaptiveKernel>(scaled, tets, r);
   } else {
-    r.kernel = "exact";
-    check<predicates::ExactKernel>(points, tets, r);
+    check<predicates::AdaptiveKernel>(points, tets, r);
   }
   return r;
 }

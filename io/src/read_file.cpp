@@ -1,6 +1,7 @@
 #include <lzma.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>

@@ -1,174 +1,126 @@
-// Adaptive insphere (Shewchuk, DCG 18, 1997, Sect. 4.4 and 6) and the lifted in-circle test of
-// four coplanar points that the infinite vertex needs.
+// Adaptive insphere (stages B, C, D) by the Laplace expansion along the column pair
+// (x, y) | (z, lift), and the lifted in-circle test of four coplanar points
+// (docs/predicates.md).
 #include <cmath>
 
 #include "dtlab/predicates/error_bounds.hpp"
 #include "dtlab/predicates/kernels.hpp"
-#include "expansion_ops.hpp"
+#include "dtlab/predicates/valid_range.hpp"
+#include "exact_stage.hpp"
 
 namespace dtlab::predicates {
 namespace {
 
-using detail::add;
-using detail::Exp;
-using detail::scale;
-using detail::sign_of;
-using detail::times_squared_length;
-using expansion::two_diff_tail;
+using detail::Fixed;
 
-// Exact insphere from raw coordinates, Shewchuk's sign: the 5x5 determinant with rows
-// [x y z x^2+y^2+z^2 1], expanded along the lifting column into five exact orientations:
-// -|a|^2 O(bcde) + |b|^2 O(acde) - |c|^2 O(abde) + |d|^2 O(abce) - |e|^2 O(abcd).
-int insphere_exact_sign(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                        const Point3& e) {
-  const Exp<1152> ta = times_squared_length(detail::orient3d_raw(b, c, d, e), a.x, a.y, a.z, -1.0);
-  const Exp<1152> tb = times_squared_length(detail::orient3d_raw(a, c, d, e), b.x, b.y, b.z, 1.0);
-  const Exp<1152> tc = times_squared_length(detail::orient3d_raw(a, b, d, e), c.x, c.y, c.z, -1.0);
-  const Exp<1152> td = times_squared_length(detail::orient3d_raw(a, b, c, e), d.x, d.y, d.z, 1.0);
-  const Exp<1152> te = times_squared_length(detail::orient3d_raw(a, b, c, d), e.x, e.y, e.z, -1.0);
-  return add(add(add(ta, tb), add(tc, td)), te).sign();
-}
-
-struct Differences {
-  double adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz, ddx, ddy, ddz;
+// One row p - e: rounded coordinates, their tails, and the squared length of the rounded values
+// (exactly and in floating point).
+struct Row {
+  double x, y, z;
+  double tx, ty, tz;
+  Fixed<6> lift_exact;
+  double lift;
 };
 
-// Stages B, C and D. `dif` holds a - e, b - e, c - e, d - e (named after Shewchuk's code, whose
-// "d" column is our fourth point; the query e is the origin).
-StagedSign insphere_adapt_shewchuk(const Point3& a, const Point3& b, const Point3& c,
-                                   const Point3& d, const Point3& e, const Differences& dif,
-                                   double permanent) {
-  const double adx = dif.adx, ady = dif.ady, adz = dif.adz;
-  const double bdx = dif.bdx, bdy = dif.bdy, bdz = dif.bdz;
-  const double cdx = dif.cdx, cdy = dif.cdy, cdz = dif.cdz;
-  const double ddx = dif.ddx, ddy = dif.ddy, ddz = dif.ddz;
+Row make_row(const Point3& p, const Point3& e) {
+  const expansion::Exact2 dx = expansion::difference(p.x, e.x);
+  const expansion::Exact2 dy = expansion::difference(p.y, e.y);
+  const expansion::Exact2 dz = expansion::difference(p.z, e.z);
+  Row r{dx.hi, dy.hi, dz.hi, dx.lo, dy.lo, dz.lo, {}, 0.0};
+  r.lift_exact = (detail::exact_product(r.x, r.x) + detail::exact_product(r.y, r.y)) +
+                 detail::exact_product(r.z, r.z);
+  r.lift = (r.x * r.x + r.y * r.y) + r.z * r.z;
+  return r;
+}
 
-  // Stage B: the determinant of the rounded differences, exactly.
-  const Exp<4> ab = detail::minor2(adx, ady, bdx, bdy);
-  const Exp<4> bc = detail::minor2(bdx, bdy, cdx, cdy);
-  const Exp<4> cd = detail::minor2(cdx, cdy, ddx, ddy);
-  const Exp<4> da = detail::minor2(ddx, ddy, adx, ady);
-  const Exp<4> ac = detail::minor2(adx, ady, cdx, cdy);
-  const Exp<4> bd = detail::minor2(bdx, bdy, ddx, ddy);
-  const Exp<24> abc = add(add(scale(bc, adz), scale(ac, -bdz)), scale(ab, cdz));
-  const Exp<24> bcd = add(add(scale(cd, bdz), scale(bd, -cdz)), scale(bc, ddz));
-  const Exp<24> cda = add(add(scale(da, cdz), scale(ac, ddz)), scale(cd, adz));
-  const Exp<24> dab = add(add(scale(ab, ddz), scale(bd, adz)), scale(da, bdz));
-  const Exp<288> adet = times_squared_length(bcd, adx, ady, adz, -1.0);
-  const Exp<288> bdet = times_squared_length(cda, bdx, bdy, bdz, 1.0);
-  const Exp<288> cdet = times_squared_length(dab, cdx, cdy, cdz, -1.0);
-  const Exp<288> ddet = times_squared_length(abc, ddx, ddy, ddz, 1.0);
-  const Exp<1152> fin = add(add(adet, bdet), add(cdet, ddet));
-  double det = fin.estimate();
-  double errbound = bounds::kInsphereB * permanent;
-  if (det >= errbound || -det >= errbound) return {sign_of(det), Stage::B};
+bool has_tail(const Row& r) {
+  return r.tx != 0.0 || r.ty != 0.0 || r.tz != 0.0;
+}
 
-  const double adxtail = two_diff_tail(a.x, e.x, adx);
-  const double adytail = two_diff_tail(a.y, e.y, ady);
-  const double adztail = two_diff_tail(a.z, e.z, adz);
-  const double bdxtail = two_diff_tail(b.x, e.x, bdx);
-  const double bdytail = two_diff_tail(b.y, e.y, bdy);
-  const double bdztail = two_diff_tail(b.z, e.z, bdz);
-  const double cdxtail = two_diff_tail(c.x, e.x, cdx);
-  const double cdytail = two_diff_tail(c.y, e.y, cdy);
-  const double cdztail = two_diff_tail(c.z, e.z, cdz);
-  const double ddxtail = two_diff_tail(d.x, e.x, ddx);
-  const double ddytail = two_diff_tail(d.y, e.y, ddy);
-  const double ddztail = two_diff_tail(d.z, e.z, ddz);
-  if (adxtail == 0.0 && adytail == 0.0 && adztail == 0.0 && bdxtail == 0.0 && bdytail == 0.0 &&
-      bdztail == 0.0 && cdxtail == 0.0 && cdytail == 0.0 && cdztail == 0.0 && ddxtail == 0.0 &&
-      ddytail == 0.0 && ddztail == 0.0) {
-    return {fin.sign(), Stage::B};  // exact differences: fin is the exact determinant
-  }
+// The exact products m_ij n_kl + m_kl n_ij of the rounded rows for the complementary pairs
+// {i, j} and {k, l}: xy minor times z-lift minor, both ways round.
+Fixed<384> complementary_pair(const Row& ri, const Row& rj, const Row& rk, const Row& rl) {
+  const Fixed<4> m_ij = detail::exact_product(ri.x, rj.y) - detail::exact_product(rj.x, ri.y);
+  const Fixed<4> m_kl = detail::exact_product(rk.x, rl.y) - detail::exact_product(rl.x, rk.y);
+  const Fixed<24> n_kl = rl.lift_exact * rk.z - rk.lift_exact * rl.z;
+  const Fixed<24> n_ij = rj.lift_exact * ri.z - ri.lift_exact * rj.z;
+  return m_ij * n_kl + m_kl * n_ij;
+}
 
-  // Stage C: first-order correction. Each *eps term is the first-order change of a 2x2 minor
-  // caused by the tails, each *3 term the minor's float approximation.
-  errbound = bounds::kInsphereC * permanent + bounds::kResultErrBound * std::fabs(det);
-  const double ab3 = adx * bdy - bdx * ady;
-  const double bc3 = bdx * cdy - cdx * bdy;
-  const double cd3 = cdx * ddy - ddx * cdy;
-  const double da3 = ddx * ady - adx * ddy;
-  const double ac3 = adx * cdy - cdx * ady;
-  const double bd3 = bdx * ddy - ddx * bdy;
-  const double abeps = (adx * bdytail + bdy * adxtail) - (ady * bdxtail + bdx * adytail);
-  const double bceps = (bdx * cdytail + cdy * bdxtail) - (bdy * cdxtail + cdx * bdytail);
-  const double cdeps = (cdx * ddytail + ddy * cdxtail) - (cdy * ddxtail + ddx * cdytail);
-  const double daeps = (ddx * adytail + ady * ddxtail) - (ddy * adxtail + adx * ddytail);
-  const double aceps = (adx * cdytail + cdy * adxtail) - (ady * cdxtail + cdx * adytail);
-  const double bdeps = (bdx * ddytail + ddy * bdxtail) - (bdy * ddxtail + ddx * bdytail);
-  // First-order change of the four 3x3 minors, and their float approximations.
-  const double abc_eps =
-      (adz * bceps - bdz * aceps + cdz * abeps) + (adztail * bc3 - bdztail * ac3 + cdztail * ab3);
-  const double bcd_eps =
-      (bdz * cdeps - cdz * bdeps + ddz * bceps) + (bdztail * cd3 - cdztail * bd3 + ddztail * bc3);
-  const double cda_eps =
-      (cdz * daeps + ddz * aceps + adz * cdeps) + (cdztail * da3 + ddztail * ac3 + adztail * cd3);
-  const double dab_eps =
-      (ddz * abeps + adz * bdeps + bdz * daeps) + (ddztail * ab3 + adztail * bd3 + bdztail * da3);
-  const double abc3 = adz * bc3 - bdz * ac3 + cdz * ab3;
-  const double bcd3 = bdz * cd3 - cdz * bd3 + ddz * bc3;
-  const double cda3 = cdz * da3 + ddz * ac3 + adz * cd3;
-  const double dab3 = ddz * ab3 + adz * bd3 + bdz * da3;
-  const double alift = adx * adx + ady * ady + adz * adz;
-  const double blift = bdx * bdx + bdy * bdy + bdz * bdz;
-  const double clift = cdx * cdx + cdy * cdy + cdz * cdz;
-  const double dlift = ddx * ddx + ddy * ddy + ddz * ddz;
-  det += ((blift * cda_eps + dlift * abc_eps) - (alift * bcd_eps + clift * dab_eps)) +
-         2.0 * (((bdx * bdxtail + bdy * bdytail + bdz * bdztail) * cda3 +
-                 (ddx * ddxtail + ddy * ddytail + ddz * ddztail) * abc3) -
-                ((adx * adxtail + ady * adytail + adz * adztail) * bcd3 +
-                 (cdx * cdxtail + cdy * cdytail + cdz * cdztail) * dab3));
-  if (det >= errbound || -det >= errbound) return {sign_of(det), Stage::C};
+// First-order change of the minors caused by the tails, and the float minors themselves.
+struct MinorPair {
+  double m, dm;  // x_i y_j - x_j y_i and its first-order change
+  double n, dn;  // z_k L_l - z_l L_k and its first-order change
+};
 
-  // Stage D: exact from raw coordinates.
-  return {insphere_exact_sign(a, b, c, d, e), Stage::D};
+double xy_change(const Row& p, const Row& q) {
+  return (p.tx * q.y + p.x * q.ty) - (q.tx * p.y + q.x * p.ty);
+}
+double lift_change(const Row& p) {
+  return 2.0 * ((p.x * p.tx + p.y * p.ty) + p.z * p.tz);
+}
+double zl_change(const Row& p, const Row& q) {
+  return (p.tz * q.lift + p.z * lift_change(q)) - (q.tz * p.lift + q.z * lift_change(p));
+}
+// d(m_ij n_kl + m_kl n_ij) to first order.
+double pair_change(const Row& ri, const Row& rj, const Row& rk, const Row& rl) {
+  const double m_ij = ri.x * rj.y - rj.x * ri.y;
+  const double m_kl = rk.x * rl.y - rl.x * rk.y;
+  const double n_kl = rk.z * rl.lift - rl.z * rk.lift;
+  const double n_ij = ri.z * rj.lift - rj.z * ri.lift;
+  return (xy_change(ri, rj) * n_kl + m_ij * zl_change(rk, rl)) +
+         (xy_change(rk, rl) * n_ij + m_kl * zl_change(ri, rj));
 }
 
 }  // namespace
 
-StagedSign AdaptiveKernel::insphere_adapt(const Point3& a, const Point3& b, const Point3& c,
-                                          const Point3& d, const Point3& e, double permanent) {
-  const Differences dif{a.x - e.x, a.y - e.y, a.z - e.z, b.x - e.x, b.y - e.y, b.z - e.z,
-                        c.x - e.x, c.y - e.y, c.z - e.z, d.x - e.x, d.y - e.y, d.z - e.z};
-  const StagedSign s = insphere_adapt_shewchuk(a, b, c, d, e, dif, permanent);
-  return {-s.sign, s.stage};  // dtlab's sign is the negation of Shewchuk's
+StagedSign AdaptiveKernel::insphere_beyond_a(const Point3& a, const Point3& b, const Point3& c,
+                                             const Point3& d, const Point3& e, double permanent) {
+  if (!in_expansion_range(a, b, c, d, e)) {
+    return {ExactKernel::insphere(a, b, c, d, e), Stage::Gmp};
+  }
+  const Row r0 = make_row(a, e);
+  const Row r1 = make_row(b, e);
+  const Row r2 = make_row(c, e);
+  const Row r3 = make_row(d, e);
+
+  // Stage B (Lemma 2): -det4 of the rounded rows exactly, in the grouping of stage A.
+  const Fixed<1152> on_rounded =
+      complementary_pair(r0, r2, r1, r3) -
+      (complementary_pair(r0, r1, r2, r3) + complementary_pair(r0, r3, r1, r2));
+  double det = on_rounded.approximate();
+  const double bound_b = bounds::kInsphereB * permanent;
+  if (det > bound_b || -det > bound_b) return {detail::sign_of(det), Stage::B};
+  if (!has_tail(r0) && !has_tail(r1) && !has_tail(r2) && !has_tail(r3)) {
+    return {on_rounded.sign(), Stage::B};  // exact differences: the value is exact
+  }
+
+  // Stage C (Lemma 3): the first-order change of each complementary pair, in floating point.
+  const double correction =
+      pair_change(r0, r2, r1, r3) - (pair_change(r0, r1, r2, r3) + pair_change(r0, r3, r1, r2));
+  det += correction;
+  const double bound_c =
+      bounds::kInsphereC * permanent + bounds::kCorrectedRelative * std::fabs(det);
+  if (det > bound_c || -det > bound_c) return {detail::sign_of(det), Stage::C};
+
+  // Stage D: exact from the exact differences.
+  const int exact = detail::insphere_exact_sign(a, b, c, d, e);
+  if (exact == detail::kUndecided) return {ExactKernel::insphere(a, b, c, d, e), Stage::Gmp};
+  return {exact, Stage::D};
 }
 
 StagedSign AdaptiveKernel::incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
                                                   const Point3& d, int drop) {
-  const int u = projection_u(drop);
-  const int v = projection_v(drop);
-  const double adu = coordinate(a, u) - coordinate(d, u);
-  const double adv = coordinate(a, v) - coordinate(d, v);
-  const double adw = coordinate(a, drop) - coordinate(d, drop);
-  const double bdu = coordinate(b, u) - coordinate(d, u);
-  const double bdv = coordinate(b, v) - coordinate(d, v);
-  const double bdw = coordinate(b, drop) - coordinate(d, drop);
-  const double cdu = coordinate(c, u) - coordinate(d, u);
-  const double cdv = coordinate(c, v) - coordinate(d, v);
-  const double cdw = coordinate(c, drop) - coordinate(d, drop);
-  const double bucv = bdu * cdv, cubv = cdu * bdv;
-  const double cuav = cdu * adv, aucv = adu * cdv;
-  const double aubv = adu * bdv, buav = bdu * adv;
-  const double alift = adu * adu + adv * adv + adw * adw;
-  const double blift = bdu * bdu + bdv * bdv + bdw * bdw;
-  const double clift = cdu * cdu + cdv * cdv + cdw * cdw;
-  const double det = alift * (bucv - cubv) + blift * (cuav - aucv) + clift * (aubv - buav);
-  const double permanent = (std::fabs(bucv) + std::fabs(cubv)) * alift +
-                           (std::fabs(cuav) + std::fabs(aucv)) * blift +
-                           (std::fabs(aubv) + std::fabs(buav)) * clift;
-  const double errbound = bounds::kIncircleLiftedA * permanent;
-  if (det > errbound || -det > errbound) return {sign_of(det), Stage::A};
-
-  // Exact: det[[u v |p|^2 1]] of the raw points, equal to the difference form for coplanar
-  // input; expanded along the lifting column into four exact projected orientations.
-  const Exp<144> ta = times_squared_length(detail::orient2d_raw(b, c, d, u, v), a.x, a.y, a.z, 1.0);
-  const Exp<144> tb =
-      times_squared_length(detail::orient2d_raw(a, c, d, u, v), b.x, b.y, b.z, -1.0);
-  const Exp<144> tc = times_squared_length(detail::orient2d_raw(a, b, d, u, v), c.x, c.y, c.z, 1.0);
-  const Exp<144> td =
-      times_squared_length(detail::orient2d_raw(a, b, c, u, v), d.x, d.y, d.z, -1.0);
-  return {add(add(ta, tb), add(tc, td)).sign(), Stage::D};
+  const detail::FilteredValue f = detail::incircle_lifted_float(a, b, c, d, drop);
+  if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
+  if (!in_expansion_range(a, b, c, d)) {
+    return {ExactKernel::incircle_lifted(a, b, c, d, drop), Stage::Gmp};
+  }
+  const int exact = detail::incircle_lifted_exact_sign(a, b, c, d, drop);
+  if (exact == detail::kUndecided) {
+    return {ExactKernel::incircle_lifted(a, b, c, d, drop), Stage::Gmp};
+  }
+  return {exact, Stage::D};
 }
 
 }  // namespace dtlab::predicates

@@ -1,111 +1,103 @@
-// Adaptive orient3d and orient2d (Shewchuk, DCG 18, 1997, Sect. 4.2 and 6).
+// Adaptive orient3d (stages B, C, D), the centroid test and orient2d, for dtlab's triple-product
+// decomposition u . (v x w) with u = b - a, v = c - a, w = d - a (docs/predicates.md).
 #include <cmath>
 
 #include "dtlab/predicates/error_bounds.hpp"
 #include "dtlab/predicates/kernels.hpp"
-#include "expansion_ops.hpp"
+#include "dtlab/predicates/valid_range.hpp"
+#include "exact_stage.hpp"
 
 namespace dtlab::predicates {
 namespace {
 
-using detail::add;
-using detail::Exp;
-using detail::scale;
-using detail::sign_of;
-using expansion::two_diff_tail;
+using detail::Fixed;
+using expansion::difference;
 
-// Stages B, C and D of Shewchuk's orient3d, his sign: det[a - d; b - d; c - d].
-StagedSign orient3d_adapt_shewchuk(const Point3& a, const Point3& b, const Point3& c,
-                                   const Point3& d, double permanent) {
-  const double adx = a.x - d.x;
-  const double bdx = b.x - d.x;
-  const double cdx = c.x - d.x;
-  const double ady = a.y - d.y;
-  const double bdy = b.y - d.y;
-  const double cdy = c.y - d.y;
-  const double adz = a.z - d.z;
-  const double bdz = b.z - d.z;
-  const double cdz = c.z - d.z;
+// A rounded difference and its tail: p - q == value + tail exactly.
+struct Rounded {
+  double value;
+  double tail;
+};
+Rounded rounded_difference(double p, double q) {
+  const expansion::Exact2 d = difference(p, q);
+  return {d.hi, d.lo};
+}
 
-  // Stage B: the determinant of the rounded differences, exactly.
-  const Exp<4> bc = detail::minor2(bdx, bdy, cdx, cdy);
-  const Exp<4> ca = detail::minor2(cdx, cdy, adx, ady);
-  const Exp<4> ab = detail::minor2(adx, ady, bdx, bdy);
-  const Exp<24> fin = add(add(scale(bc, adz), scale(ca, bdz)), scale(ab, cdz));
-  double det = fin.estimate();
-  double errbound = bounds::kOrient3dB * permanent;
-  if (det >= errbound || -det >= errbound) return {sign_of(det), Stage::B};
+struct RoundedVector {
+  Rounded x, y, z;
+};
+RoundedVector rounded_vector(const Point3& p, const Point3& q) {
+  return {rounded_difference(p.x, q.x), rounded_difference(p.y, q.y), rounded_difference(p.z, q.z)};
+}
+bool has_tail(const RoundedVector& r) {
+  return r.x.tail != 0.0 || r.y.tail != 0.0 || r.z.tail != 0.0;
+}
 
-  const double adxtail = two_diff_tail(a.x, d.x, adx);
-  const double bdxtail = two_diff_tail(b.x, d.x, bdx);
-  const double cdxtail = two_diff_tail(c.x, d.x, cdx);
-  const double adytail = two_diff_tail(a.y, d.y, ady);
-  const double bdytail = two_diff_tail(b.y, d.y, bdy);
-  const double cdytail = two_diff_tail(c.y, d.y, cdy);
-  const double adztail = two_diff_tail(a.z, d.z, adz);
-  const double bdztail = two_diff_tail(b.z, d.z, bdz);
-  const double cdztail = two_diff_tail(c.z, d.z, cdz);
-  if (adxtail == 0.0 && bdxtail == 0.0 && cdxtail == 0.0 && adytail == 0.0 && bdytail == 0.0 &&
-      cdytail == 0.0 && adztail == 0.0 && bdztail == 0.0 && cdztail == 0.0) {
-    return {fin.sign(), Stage::B};  // the differences were exact, so fin is the exact value
-  }
-
-  // Stage C: add the first-order effect of the tails.
-  errbound = bounds::kOrient3dC * permanent + bounds::kResultErrBound * std::fabs(det);
-  det += (adz * ((bdx * cdytail + cdy * bdxtail) - (bdy * cdxtail + cdx * bdytail)) +
-          adztail * (bdx * cdy - bdy * cdx)) +
-         (bdz * ((cdx * adytail + ady * cdxtail) - (cdy * adxtail + adx * cdytail)) +
-          bdztail * (cdx * ady - cdy * adx)) +
-         (cdz * ((adx * bdytail + bdy * adxtail) - (ady * bdxtail + bdx * adytail)) +
-          cdztail * (adx * bdy - ady * bdx));
-  if (det >= errbound || -det >= errbound) return {sign_of(det), Stage::C};
-
-  // Stage D: exact, from the raw coordinates.
-  return {detail::orient3d_raw(a, b, c, d).sign(), Stage::D};
+// One component of the cross product v x w on the rounded values, exactly: p q' - p' q.
+Fixed<4> exact_minor(double p, double q_prime, double p_prime, double q) {
+  return detail::exact_product(p, q_prime) - detail::exact_product(p_prime, q);
 }
 
 }  // namespace
 
-StagedSign AdaptiveKernel::orient3d_adapt(const Point3& a, const Point3& b, const Point3& c,
-                                          const Point3& d, double permanent) {
-  const StagedSign s = orient3d_adapt_shewchuk(a, b, c, d, permanent);
-  return {-s.sign, s.stage};  // dtlab's sign is the negation of Shewchuk's
+StagedSign AdaptiveKernel::orient3d_beyond_a(const Point3& a, const Point3& b, const Point3& c,
+                                             const Point3& d, double permanent) {
+  if (!in_expansion_range(a, b, c, d)) return {ExactKernel::orient3d(a, b, c, d), Stage::Gmp};
+  const RoundedVector u = rounded_vector(b, a);
+  const RoundedVector v = rounded_vector(c, a);
+  const RoundedVector w = rounded_vector(d, a);
+
+  // Stage B: the triple product of the rounded differences, exactly (Lemma 2).
+  const Fixed<24> on_rounded =
+      (exact_minor(v.y.value, w.z.value, v.z.value, w.y.value) * u.x.value +
+       exact_minor(v.z.value, w.x.value, v.x.value, w.z.value) * u.y.value) +
+      exact_minor(v.x.value, w.y.value, v.y.value, w.x.value) * u.z.value;
+  double det = on_rounded.approximate();
+  const double bound_b = bounds::kOrient3dB * permanent;
+  if (det > bound_b || -det > bound_b) return {detail::sign_of(det), Stage::B};
+  if (!has_tail(u) && !has_tail(v) && !has_tail(w)) {
+    return {on_rounded.sign(), Stage::B};  // the differences were exact: so is the value
+  }
+
+  // Stage C (Lemma 3): add the terms of first order in the tails,
+  //   tail(u) . (v x w) + u . (tail(v) x w + v x tail(w)),
+  // with the cross product v x w in floating point.
+  const double cx = v.y.value * w.z.value - v.z.value * w.y.value;
+  const double cy = v.z.value * w.x.value - v.x.value * w.z.value;
+  const double cz = v.x.value * w.y.value - v.y.value * w.x.value;
+  const double dx =
+      (v.y.tail * w.z.value + v.y.value * w.z.tail) - (v.z.tail * w.y.value + v.z.value * w.y.tail);
+  const double dy =
+      (v.z.tail * w.x.value + v.z.value * w.x.tail) - (v.x.tail * w.z.value + v.x.value * w.z.tail);
+  const double dz =
+      (v.x.tail * w.y.value + v.x.value * w.y.tail) - (v.y.tail * w.x.value + v.y.value * w.x.tail);
+  const double correction = ((u.x.tail * cx + u.x.value * dx) + (u.y.tail * cy + u.y.value * dy)) +
+                            (u.z.tail * cz + u.z.value * dz);
+  det += correction;
+  const double bound_c =
+      bounds::kOrient3dC * permanent + bounds::kCorrectedRelative * std::fabs(det);
+  if (det > bound_c || -det > bound_c) return {detail::sign_of(det), Stage::C};
+
+  // Stage D: exact, from the exact differences.
+  return {detail::orient3d_exact_sign(a, b, c, d), Stage::D};
 }
 
 StagedSign AdaptiveKernel::orient3d_centroid_staged(const Point3& a, const Point3& b,
                                                     const Point3& c, const Tetrahedron4& v) {
-  // Stage A: the four float determinants (Shewchuk's sign) and their permanents. Each is off by
-  // at most kOrient3dA * permanent; the three additions add at most 3 eps (1 + eps)^3 times the
-  // sum of magnitudes, which the extra 6 eps covers with room for the rounding of the bound.
-  double sum = 0.0;
-  double permanents = 0.0;
-  for (const Point3& d : v) {
-    const detail::DeterminantTerms t = detail::orient3d_terms(a, b, c, d);
-    sum += t.det;
-    permanents += t.permanent;
+  const detail::FilteredValue f = detail::orient3d_centroid_float(a, b, c, v);
+  if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
+  if (!in_expansion_range(a, b, c, v[0], v[1], v[2], v[3])) {
+    return {ExactKernel::orient3d_centroid(a, b, c, v), Stage::Gmp};
   }
-  const double errbound = (bounds::kOrient3dA + 6.0 * bounds::kEpsilon) * permanents;
-  if (sum > errbound || -sum > errbound) return {-sign_of(sum), Stage::A};
-  // Exact: the sum of the four exact orientations.
-  const Exp<192> first =
-      add(detail::orient3d_raw(a, b, c, v[0]), detail::orient3d_raw(a, b, c, v[1]));
-  const Exp<192> second =
-      add(detail::orient3d_raw(a, b, c, v[2]), detail::orient3d_raw(a, b, c, v[3]));
-  return {-add(first, second).sign(), Stage::D};
+  return {detail::orient3d_centroid_exact_sign(a, b, c, v), Stage::D};
 }
 
 StagedSign AdaptiveKernel::orient2d_staged(const Point3& a, const Point3& b, const Point3& c,
                                            int drop) {
-  const int u = projection_u(drop);
-  const int v = projection_v(drop);
-  const double detleft =
-      (coordinate(a, u) - coordinate(c, u)) * (coordinate(b, v) - coordinate(c, v));
-  const double detright =
-      (coordinate(a, v) - coordinate(c, v)) * (coordinate(b, u) - coordinate(c, u));
-  const double det = detleft - detright;
-  const double errbound = bounds::kOrient2dA * (std::fabs(detleft) + std::fabs(detright));
-  if (det > errbound || -det > errbound) return {sign_of(det), Stage::A};
-  return {detail::orient2d_raw(a, b, c, u, v).sign(), Stage::D};
+  const detail::FilteredValue f = detail::orient2d_float(a, b, c, drop);
+  if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
+  if (!in_expansion_range(a, b, c)) return {ExactKernel::orient2d(a, b, c, drop), Stage::Gmp};
+  return {detail::orient2d_exact_sign(a, b, c, drop), Stage::D};
 }
 
 }  // namespace dtlab::predicates

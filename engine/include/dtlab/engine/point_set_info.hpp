@@ -1,6 +1,7 @@
 #pragma once
 // Exact facts about a point set: duplicates, affine dimension, magnitudes, and the power-of-two
-// scaling that brings it into the adaptive kernel's valid range.
+// scaling the engine applies (and whether the scaled coordinates lie in the range where the
+// expansion arithmetic of the adaptive and filtered kernels is exact).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -22,7 +23,10 @@ struct PointSetInfo {
   int dimension = -1;  // affine dimension of the distinct points: -1 (empty), 0, 1, 2 or 3
   double min_abs_nonzero = 0.0;  // smallest nonzero |coordinate| (0 if none)
   double max_abs = 0.0;
-  bool adaptive_range_ok = true;  // fits the adaptive kernel after exact power-of-two scaling
+  // After the engine's scaling every nonzero coordinate lies in the expansion range
+  // (valid_range.hpp): no adaptive or filtered call needs the GMP fallback. Informational: every
+  // finite input is triangulated exactly either way.
+  bool within_expansion_range = true;
 };
 
 PointSetInfo analyze(const std::vector<Point3>& points);
@@ -36,11 +40,16 @@ struct SimplexSearch {
 SimplexSearch find_simplex(const std::vector<Point3>& points,
                            const std::vector<std::uint32_t>& order);
 
-// The exponent k such that 2^k * max|coordinate| lies in [2^99, 2^100), and whether every
-// nonzero coordinate then stays within the adaptive kernel's valid range.
+// The power-of-two scaling of the engine and the validator.
 struct RangeScaling {
-  int exponent = 0;
-  bool fits = true;
+  int exponent = 0;  // 2^exponent * max|coordinate| lies in [2^99, 2^100)
+  // Scaling by 2^exponent is exact: no nonzero coordinate becomes subnormal or zero (the scaled
+  // smallest nonzero magnitude stays >= 2^-1022). Only then may it be applied.
+  bool lossless = true;
+  // After the scaling (applied only when lossless) every nonzero coordinate has magnitude in
+  // [2^kRangeMinExponent, 2^kRangeMaxExponent] (valid_range.hpp): no predicate call of the
+  // adaptive or filtered kernel needs the GMP fallback.
+  bool within_expansion_range = true;
 };
 RangeScaling adaptive_range_scaling(double max_abs, double min_abs_nonzero);
 

@@ -14,7 +14,7 @@ namespace dtlab::engine {
 using io::Tetrahedron;
 using predicates::Point3;
 
-enum class KernelKind { Fast, Adaptive, Exact };
+enum class KernelKind { Fast, Adaptive, Filtered, Exact };
 // The lock methods of the paper (Sect. 5) and the batch method it described (docs/design.md).
 enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent, Burglary, Batch };
 // How the permuted points are split among the threads (paper Sect. 6).
@@ -123,8 +123,10 @@ struct Triangulation {
   TriangulationStats stats;
 };
 
-// The input has no tetrahedralization (fewer than 4 distinct points, all coplanar) or lies outside
-// what the chosen kernel can decide exactly.
+// The input has no tetrahedralization (fewer than 4 distinct points, all coplanar) or a NaN or
+// infinite coordinate, or the run could not finish (too many points, a first tetrahedron the fast
+// kernel sees as flat, the watchdog). The adaptive, filtered and exact kernels decide every finite
+// double input exactly: no input is refused for its magnitudes.
 class TriangulationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

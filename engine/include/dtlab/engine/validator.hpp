@@ -1,7 +1,7 @@
 #pragma once
 // The one validator (CLI, tests, fuzzers, experiments). It rebuilds adjacency from the
-// tetrahedron list alone and decides every check exactly: with the adaptive kernel after an
-// exact power-of-two scaling when the input fits its valid range, with GMP otherwise.
+// tetrahedron list alone and decides every check exactly, with the adaptive kernel (exact for
+// every finite double), after the engine's power-of-two scaling when that is lossless.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,7 +30,7 @@ struct ValidationReport {
   std::uint64_t missing_points = 0;            // distinct input point that is no vertex
   std::uint64_t repeated_duplicates = 0;       // duplicate set used as a vertex more than once
   std::int64_t euler_characteristic = 0;       // V - E + F - T; 1 for a triangulated ball
-  std::string kernel;                          // "adaptive" or "exact"
+  std::string kernel;                          // the kernel that decided: "adaptive"
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
 

@@ -1,6 +1,7 @@
 #pragma once
-// Audit layer: a kernel wrapper that counts calls per predicate and per adaptive stage, and for
-// the fast kernel, how many signs differ from the exact kernel. It is a separate kernel type, so
+// Audit layer: a kernel wrapper that counts calls per predicate and per stage (adaptive: A, B, C,
+// D, gmp; filtered: A, D, gmp), and for the fast kernel, how many signs differ from the exact
+// kernel. It is a separate kernel type, so
 // the choice is made at compile time and the plain kernels pay nothing.
 #include <array>
 #include <atomic>
@@ -29,8 +30,9 @@ struct AuditCounters {
 };
 AuditCounters& audit_counters();
 
-// Counts the calls of any kernel, the stages of the adaptive kernel, and for `fast` the calls
-// whose sign differs from ExactKernel (evaluating both).
+// Counts the calls of any kernel, the stages of a staged kernel (adaptive, filtered: those with
+// *_staged functions), and for the others the calls whose sign differs from ExactKernel
+// (evaluating both; nonzero only for `fast`).
 template <class K>
 struct Audited {
   static constexpr const char* kName = K::kName;
@@ -110,7 +112,8 @@ struct Audited {
   }
 };
 
-// The audit table as text (one row per predicate).
+// The audit table as text: one row per predicate; calls, one column per stage (A, B, C, D, gmp),
+// wrong sign.
 std::string audit_table(const char* kernel_name);
 
 }  // namespace dtlab::predicates

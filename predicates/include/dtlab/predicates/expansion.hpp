@@ -1,167 +1,159 @@
 #pragma once
-// Exact floating-point expansion arithmetic after Shewchuk (DCG 18, 1997, Sect. 2).
-// An expansion is an array of doubles, nonoverlapping and sorted by increasing magnitude, whose
-// exact sum is the represented value. Every routine here is exact provided that no operation
-// overflows or underflows and that the compiler neither contracts a*b+c into a fused
-// multiply-add nor reassociates: the predicates target is built with -ffp-contract=off.
+// Error-free transformations and expansion arithmetic, implemented from the theorems of
+// Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates",
+// DCG 18 (1997), Sect. 2 (Dekker's and Knuth's sums, Dekker's product, Theorems 6, 7, 13, 17-19
+// and the compression of Sect. 2.8). Statements and proofs in docs/predicates.md.
+//
+// An expansion is a sequence of doubles whose exact sum is the value it represents, sorted by
+// increasing magnitude, nonoverlapping (the lowest set bit of each component lies above the
+// highest set bit of the one before), zeros removed except that the value 0 is the single
+// component 0. Every routine is exact when no operation overflows or underflows, with round to
+// nearest even, and with every operation rounded on its own: the predicates target is built with
+// -ffp-contract=off (no fused multiply-add behind our back) and without -ffast-math.
 #include <cmath>
 
 #include "dtlab/predicates/error_bounds.hpp"
 
 namespace dtlab::predicates::expansion {
 
-// x + y == a + b exactly, x = fl(a + b). Requires |a| >= |b| (or a == 0).
-inline void fast_two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  const double b_virtual = x - a;
-  y = b - b_virtual;
+// hi + lo == the exact result, hi == the rounded result, |lo| <= half an ulp of hi.
+struct Exact2 {
+  double hi;
+  double lo;
+};
+
+// Dekker's sum (Theorem 6): for |big| >= |small| (or big == 0), the rounded sum and its error.
+// s - big is exact, so is small - (s - big).
+inline Exact2 sum_big_small(double big, double small) {
+  const double s = big + small;
+  const double small_in_s = s - big;
+  return {s, small - small_in_s};
 }
 
-// x + y == a + b exactly, x = fl(a + b), for any a, b (Knuth's Two-Sum).
-inline void two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  const double b_virtual = x - a;
-  const double a_virtual = x - b_virtual;
-  const double b_roundoff = b - b_virtual;
-  const double a_roundoff = a - a_virtual;
-  y = a_roundoff + b_roundoff;
+// Knuth's sum (Theorem 7): the same for any two doubles, at three more operations. Both
+// summands' contributions to s are recovered and their losses added.
+inline Exact2 sum_any(double a, double b) {
+  const double s = a + b;
+  const double b_in_s = s - a;
+  const double a_in_s = s - b_in_s;
+  return {s, (a - a_in_s) + (b - b_in_s)};
 }
 
-// The roundoff y of x = fl(a - b), so that x + y == a - b exactly.
-inline double two_diff_tail(double a, double b, double x) {
-  const double b_virtual = a - x;
-  const double a_virtual = x + b_virtual;
-  const double b_roundoff = b_virtual - b;
-  const double a_roundoff = a - a_virtual;
-  return a_roundoff + b_roundoff;
+// a - b exactly (negation is exact).
+inline Exact2 difference(double a, double b) {
+  return sum_any(a, -b);
 }
 
-// Dekker's split: a == hi + lo, each with at most 26 significant bits.
-inline void split(double a, double& hi, double& lo) {
-  const double c = bounds::kSplitter * a;
-  const double a_big = c - a;
-  hi = c - a_big;
-  lo = a - hi;
+// Veltkamp's split (Theorem 17): a == high + low with both halves of at most 26 significant
+// bits, so that products of halves are exact.
+inline Exact2 split_halves(double a) {
+  const double scaled = bounds::kSplitter * a;
+  const double high = scaled - (scaled - a);
+  return {high, a - high};
 }
 
-// x + y == a * b exactly, x = fl(a * b). With hardware FMA (compiled with -mfma) the roundoff is
-// one fused operation; otherwise Veltkamp-Dekker splitting.
-inline void two_product(double a, double b, double& x, double& y) {
-  x = a * b;
+// Dekker's product (Theorem 18): the rounded product and its error. With a hardware fused
+// multiply-add (-mfma) the error is one fused operation; otherwise the four partial products of
+// the halves are subtracted from the rounded product, largest first, each step exact.
+inline Exact2 product(double a, double b) {
+  const double p = a * b;
 #if defined(__FMA__) && !defined(DTLAB_DEKKER_PRODUCT)
-  y = std::fma(a, b, -x);
+  return {p, std::fma(a, b, -p)};
 #else
-  double a_hi = 0.0;
-  double a_lo = 0.0;
-  double b_hi = 0.0;
-  double b_lo = 0.0;
-  split(a, a_hi, a_lo);
-  split(b, b_hi, b_lo);
-  const double err1 = x - (a_hi * b_hi);
-  const double err2 = err1 - (a_lo * b_hi);
-  const double err3 = err2 - (a_hi * b_lo);
-  y = (a_lo * b_lo) - err3;
+  const Exact2 ha = split_halves(a);
+  const Exact2 hb = split_halves(b);
+  double rest = p - ha.hi * hb.hi;
+  rest -= ha.lo * hb.hi;
+  rest -= ha.hi * hb.lo;
+  return {p, ha.lo * hb.lo - rest};
 #endif
 }
 
-// h = e + f (Shewchuk's Fast-Expansion-Sum, Theorem 13) with zero components removed.
-// h needs room for elen + flen components; returns the length of h (at least 1).
-inline int sum_zeroelim(int elen, const double* e, int flen, const double* f, double* h) {
-  int ei = 0;
-  int fi = 0;
-  // Merge by magnitude: take the smaller of the next components of e and f.
-  auto next = [&]() -> double {
-    if (fi >= flen || (ei < elen && std::fabs(e[ei]) <= std::fabs(f[fi]))) return e[ei++];
-    return f[fi++];
+// Expansion sum (Theorem 13): h = e + f. The components of both are taken in one merged order of
+// increasing magnitude and folded into a running rounded total with Knuth's sum; every nonzero
+// error that falls out is final and is emitted in order. h needs room for ne + nf components;
+// returns its length (at least 1).
+inline int add(const double* e, int ne, const double* f, int nf, double* h) {
+  int ie = 0;
+  int jf = 0;
+  auto next_smallest = [&]() -> double {
+    if (jf == nf || (ie < ne && std::fabs(e[ie]) <= std::fabs(f[jf]))) return e[ie++];
+    return f[jf++];
   };
-  const int total = elen + flen;
-  int hi = 0;
-  double q = next();
-  if (total > 1) {
-    double hh = 0.0;
-    const double g = next();
-    fast_two_sum(g, q, q, hh);
-    if (hh != 0.0) h[hi++] = hh;
-    for (int k = 2; k < total; ++k) {
-      const double gk = next();
-      two_sum(q, gk, q, hh);
-      if (hh != 0.0) h[hi++] = hh;
-    }
+  int nh = 0;
+  double total = next_smallest();
+  for (int k = ne + nf - 1; k > 0; --k) {
+    const Exact2 s = sum_any(total, next_smallest());
+    if (s.lo != 0.0) h[nh++] = s.lo;
+    total = s.hi;
   }
-  if (q != 0.0 || hi == 0) h[hi++] = q;
-  return hi;
+  if (total != 0.0 || nh == 0) h[nh++] = total;
+  return nh;
 }
 
-// h = b * e (Shewchuk's Scale-Expansion, Theorem 19) with zero components removed.
-// h needs room for 2 * elen components; returns the length of h (at least 1).
-inline int scale_zeroelim(int elen, const double* e, double b, double* h) {
-  int hi = 0;
-  double q = 0.0;
-  double hh = 0.0;
-  two_product(e[0], b, q, hh);
-  if (hh != 0.0) h[hi++] = hh;
-  for (int i = 1; i < elen; ++i) {
-    double product1 = 0.0;
-    double product0 = 0.0;
-    double sum = 0.0;
-    two_product(e[i], b, product1, product0);
-    two_sum(q, product0, sum, hh);
-    if (hh != 0.0) h[hi++] = hh;
-    fast_two_sum(product1, sum, q, hh);
-    if (hh != 0.0) h[hi++] = hh;
+// Scaling (Theorem 19): h = b * e. Each component's exact product is two doubles; the low one is
+// folded into the running total with Knuth's sum, the high one with Dekker's sum (it dominates
+// the total by the nonoverlapping property). h needs room for 2 ne components.
+inline int scale(const double* e, int ne, double b, double* h) {
+  int nh = 0;
+  const Exact2 first = product(e[0], b);
+  if (first.lo != 0.0) h[nh++] = first.lo;
+  double total = first.hi;
+  for (int i = 1; i < ne; ++i) {
+    const Exact2 p = product(e[i], b);
+    const Exact2 low = sum_any(total, p.lo);
+    if (low.lo != 0.0) h[nh++] = low.lo;
+    const Exact2 high = sum_big_small(p.hi, low.hi);
+    if (high.lo != 0.0) h[nh++] = high.lo;
+    total = high.hi;
   }
-  if (q != 0.0 || hi == 0) h[hi++] = q;
-  return hi;
+  if (total != 0.0 || nh == 0) h[nh++] = total;
+  return nh;
 }
 
-// Shewchuk's Compress (Sect. 2.8): the same value in as few components as cheaply possible,
-// largest component a good approximation of the whole. In place is allowed (h == e).
-inline int compress(int elen, const double* e, double* h) {
-  int bottom = elen - 1;
-  double q = e[bottom];
-  for (int i = elen - 2; i >= 0; --i) {
-    double q_new = 0.0;
-    double small = 0.0;
-    fast_two_sum(q, e[i], q_new, small);
-    if (small != 0.0) {
-      h[bottom--] = q_new;
-      q = small;
+// Compression (Sect. 2.8): the same value in few components, the largest one within an ulp of the
+// whole. First from the top down: Dekker's sum of the running value and the next smaller
+// component; where it leaves an error, the rounded part is set aside (it is final at its
+// magnitude). Then from the bottom up over what was set aside, again keeping the nonzero errors.
+// h may be e.
+inline int compress(const double* e, int ne, double* h) {
+  int set_aside = ne;  // h[set_aside .. ne) holds the parts set aside, smallest first
+  double running = e[ne - 1];
+  for (int i = ne - 2; i >= 0; --i) {
+    const Exact2 s = sum_big_small(running, e[i]);
+    if (s.lo != 0.0) {
+      h[--set_aside] = s.hi;
+      running = s.lo;
     } else {
-      q = q_new;
+      running = s.hi;
     }
   }
-  int top = 0;
-  for (int i = bottom + 1; i < elen; ++i) {
-    double q_new = 0.0;
-    double small = 0.0;
-    fast_two_sum(h[i], q, q_new, small);
-    if (small != 0.0) h[top++] = small;
-    q = q_new;
+  int nh = 0;
+  for (int i = set_aside; i < ne; ++i) {
+    const Exact2 s = sum_big_small(h[i], running);
+    if (s.lo != 0.0) h[nh++] = s.lo;
+    running = s.hi;
   }
-  h[top++] = q;
-  return top;
+  h[nh++] = running;
+  return nh;
 }
 
-// Approximate value (sum of components, smallest first).
-inline double estimate(int elen, const double* e) {
+// The sum of the components in floating point, smallest first: within 2 eps of the value
+// (the components below the largest add up to less than one ulp of it).
+inline double approximate(const double* e, int ne) {
   double sum = 0.0;
-  for (int i = 0; i < elen; ++i) sum += e[i];
+  for (int i = 0; i < ne; ++i) sum += e[i];
   return sum;
 }
 
-// The sign of an expansion is the sign of its most significant (last) component.
-inline int sign_of(int elen, const double* e) {
-  const double top = e[elen - 1];
+// The sign of the value is the sign of its largest component.
+inline int sign(const double* e, int ne) {
+  const double top = e[ne - 1];
   return (top > 0.0) - (top < 0.0);
 }
 
-// Exact a*b - c*d as an expansion of up to 4 components; returns its length.
-inline int two_two_diff_products(double a, double b, double c, double d, double* h) {
-  double ab[2];
-  double cd[2];
-  two_product(a, b, ab[1], ab[0]);
-  two_product(-c, d, cd[1], cd[0]);
-  return sum_zeroelim(2, ab, 2, cd, h);
+inline void negate(double* e, int ne) {
+  for (int i = 0; i < ne; ++i) e[i] = -e[i];
 }
 
 }  // namespace dtlab::predicates::expansion

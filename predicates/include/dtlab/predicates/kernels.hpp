@@ -1,7 +1,7 @@
 #pragma once
-// The three predicate kernels behind one interface. Each is a stateless struct of static
-// functions, so the engine takes the kernel as a template parameter and pays nothing for the
-// choice. Every function returns a sign in {-1, 0, +1}.
+// The predicate kernels behind one interface. Each is a stateless struct of static functions, so
+// the engine takes the kernel as a template parameter and pays nothing for the choice. Every
+// function returns a sign in {-1, 0, +1}.
 //
 // Sign convention (docs/predicates.md), the same as CGAL's and the opposite of Shewchuk's:
 //   orient3d(a, b, c, d) > 0  iff  det[b - a; c - a; d - a] > 0, i.e. d lies on the side of the
@@ -20,79 +20,87 @@
 //                              exactly (orient3d is affine in its last point, so this is the sign
 //                              of the sum of the four orientations). The engine's symbolic
 //                              interior point.
+//
+// Kernels: `fast` (plain doubles, wrong signs possible: an object of study), `adaptive`
+// (Shewchuk's adaptive stages A-D, derived and written for dtlab), `filtered` (a semi-static
+// filter in the style of Meyer and Pion, then exact), `exact` (GMP). adaptive and filtered decide
+// every finite double input exactly: where the expansion arithmetic of their exact stages could
+// underflow or overflow they hand the call to the GMP evaluation (stage Gmp in the audit).
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "dtlab/predicates/detail/float_determinants.hpp"
-#include "dtlab/predicates/error_bounds.hpp"
+#include "dtlab/predicates/detail/semi_static.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::predicates {
 
-// Which stage of the adaptive evaluation settled a call: A (float filter), B (exact on rounded
-// differences), C (first-order tail correction), D (exact), or the exact fallback of a predicate
-// that has only a filter and an exact stage.
-enum class Stage : std::uint8_t { A = 0, B = 1, C = 2, D = 3 };
-inline constexpr int kStageCount = 4;
+// Which stage settled a call. adaptive: A (float filter), B (exact on the rounded differences),
+// C (first-order tail correction), D (exact expansions). filtered: A (semi-static filter), D
+// (exact expansions). Both: Gmp, the exact GMP evaluation for a call whose coordinates lie
+// outside the range where expansion arithmetic is exact (valid_range.hpp).
+enum class Stage : std::uint8_t { A = 0, B = 1, C = 2, D = 3, Gmp = 4 };
+inline constexpr int kStageCount = 5;
+const char* stage_name(Stage s);
 
 struct StagedSign {
   int sign;
   Stage stage;
 };
 
-// Plain double arithmetic on coordinate differences, no filter. Wrong signs are possible and are
-// what dtlab measures.
 using Tetrahedron4 = std::array<Point3, 4>;
 
+// Plain double arithmetic: the float determinants of stage A, no error bound.
 struct FastKernel {
   static constexpr const char* kName = "fast";
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
-                               const Tetrahedron4& v);
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-    return -detail::sign_of(detail::orient3d_terms(a, b, c, d).det);  // dtlab sign = -Shewchuk's
+    return detail::sign_of(detail::orient3d_float(a, b, c, d).det);
   }
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                       const Point3& e) {
-    return -detail::sign_of(detail::insphere_terms(a, b, c, d, e).det);
+    return detail::sign_of(detail::insphere_float(a, b, c, d, e).det);
   }
-  static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop);
+  static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
+    return detail::sign_of(detail::orient2d_float(a, b, c, drop).det);
+  }
   static int incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                             int drop);
+                             int drop) {
+    return detail::sign_of(detail::incircle_lifted_float(a, b, c, d, drop).det);
+  }
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v) {
+    return detail::sign_of(detail::orient3d_centroid_float(a, b, c, v).det);
+  }
 };
 
-// Shewchuk's adaptive-precision predicates, written for dtlab from the DCG 1997 paper. Exact for
-// every input within the valid range (valid_range.hpp); thread safe, no global state.
+// Shewchuk's adaptive-precision scheme (DCG 18, 1997), derived for dtlab's own decompositions
+// (docs/predicates.md). Exact for every finite double; thread safe, no global state.
 struct AdaptiveKernel {
   static constexpr const char* kName = "adaptive";
-  // Stage A inline; stages B, C and D out of line (adaptive_orient.cpp, adaptive_insphere.cpp).
+  // Stage A inline; the later stages out of line.
   static StagedSign orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d) {
-    const detail::DeterminantTerms t = detail::orient3d_terms(a, b, c, d);
-    const double errbound = bounds::kOrient3dA * t.permanent;
-    if (t.det > errbound || -t.det > errbound) return {-detail::sign_of(t.det), Stage::A};
-    return orient3d_adapt(a, b, c, d, t.permanent);
+    const detail::FilteredValue f = detail::orient3d_float(a, b, c, d);
+    if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
+    return orient3d_beyond_a(a, b, c, d, f.permanent);
   }
   static StagedSign insphere_staged(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, const Point3& e) {
-    const detail::DeterminantTerms t = detail::insphere_terms(a, b, c, d, e);
-    const double errbound = bounds::kInsphereA * t.permanent;
-    if (t.det > errbound || -t.det > errbound) return {-detail::sign_of(t.det), Stage::A};
-    return insphere_adapt(a, b, c, d, e, t.permanent);
+    const detail::FilteredValue f = detail::insphere_float(a, b, c, d, e);
+    if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
+    return insphere_beyond_a(a, b, c, d, e, f.permanent);
   }
-  // Stages B, C and D, with dtlab's sign; `permanent` from stage A.
-  static StagedSign orient3d_adapt(const Point3& a, const Point3& b, const Point3& c,
-                                   const Point3& d, double permanent);
-  static StagedSign insphere_adapt(const Point3& a, const Point3& b, const Point3& c,
-                                   const Point3& d, const Point3& e, double permanent);
+  // Stages B, C, D (or Gmp); `permanent` from stage A.
+  static StagedSign orient3d_beyond_a(const Point3& a, const Point3& b, const Point3& c,
+                                      const Point3& d, double permanent);
+  static StagedSign insphere_beyond_a(const Point3& a, const Point3& b, const Point3& c,
+                                      const Point3& d, const Point3& e, double permanent);
   static StagedSign orient2d_staged(const Point3& a, const Point3& b, const Point3& c, int drop);
   static StagedSign incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
                                            const Point3& d, int drop);
   static StagedSign orient3d_centroid_staged(const Point3& a, const Point3& b, const Point3& c,
                                              const Tetrahedron4& v);
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
-                               const Tetrahedron4& v) {
-    return orient3d_centroid_staged(a, b, c, v).sign;
-  }
 
   static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
     return orient3d_staged(a, b, c, d).sign;
@@ -108,10 +116,79 @@ struct AdaptiveKernel {
                              int drop) {
     return incircle_lifted_staged(a, b, c, d, drop).sign;
   }
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v) {
+    return orient3d_centroid_staged(a, b, c, v).sign;
+  }
+};
+
+// A semi-static filter: the error bound is a precomputed constant times the product of the
+// largest coordinate differences per axis (the scheme of Meyer and Pion's filter generator and of
+// CGAL's static filters, derived here for dtlab's evaluation orders), valid on a stated magnitude
+// window; outside it, or when the filter cannot decide, the exact expansion evaluation (stage D)
+// or GMP decides. Exact for every finite double.
+struct FilteredKernel {
+  static constexpr const char* kName = "filtered";
+  // The filters inline (detail/semi_static.hpp); the exact evaluation out of line.
+  static StagedSign orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d) {
+    const int s = detail::orient3d_semi_static(a, b, c, d);
+    return s != detail::kFilterUndecided ? StagedSign{s, Stage::A} : orient3d_exact(a, b, c, d);
+  }
+  static StagedSign insphere_staged(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d, const Point3& e) {
+    const int s = detail::insphere_semi_static(a, b, c, d, e);
+    return s != detail::kFilterUndecided ? StagedSign{s, Stage::A} : insphere_exact(a, b, c, d, e);
+  }
+  static StagedSign orient2d_staged(const Point3& a, const Point3& b, const Point3& c, int drop) {
+    const int s = detail::orient2d_semi_static(a, b, c, drop);
+    return s != detail::kFilterUndecided ? StagedSign{s, Stage::A} : orient2d_exact(a, b, c, drop);
+  }
+  static StagedSign incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
+                                           const Point3& d, int drop) {
+    const int s = detail::incircle_lifted_semi_static(a, b, c, d, drop);
+    return s != detail::kFilterUndecided ? StagedSign{s, Stage::A}
+                                         : incircle_lifted_exact(a, b, c, d, drop);
+  }
+  static StagedSign orient3d_centroid_staged(const Point3& a, const Point3& b, const Point3& c,
+                                             const Tetrahedron4& v) {
+    const int s = detail::orient3d_centroid_semi_static(a, b, c, v);
+    return s != detail::kFilterUndecided ? StagedSign{s, Stage::A}
+                                         : orient3d_centroid_exact(a, b, c, v);
+  }
+  // Stage D (exact expansions), or Gmp outside the expansion range.
+  static StagedSign orient3d_exact(const Point3& a, const Point3& b, const Point3& c,
+                                   const Point3& d);
+  static StagedSign insphere_exact(const Point3& a, const Point3& b, const Point3& c,
+                                   const Point3& d, const Point3& e);
+  static StagedSign orient2d_exact(const Point3& a, const Point3& b, const Point3& c, int drop);
+  static StagedSign incircle_lifted_exact(const Point3& a, const Point3& b, const Point3& c,
+                                          const Point3& d, int drop);
+  static StagedSign orient3d_centroid_exact(const Point3& a, const Point3& b, const Point3& c,
+                                            const Tetrahedron4& v);
+
+  static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+    return orient3d_staged(a, b, c, d).sign;
+  }
+  static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                      const Point3& e) {
+    return insphere_staged(a, b, c, d, e).sign;
+  }
+  static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
+    return orient2d_staged(a, b, c, drop).sign;
+  }
+  static int incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                             int drop) {
+    return incircle_lifted_staged(a, b, c, d, drop).sign;
+  }
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v) {
+    return orient3d_centroid_staged(a, b, c, v).sign;
+  }
 };
 
 // Arbitrary precision reference (GMP integers after an exact common power-of-two scaling).
-// Exact for every finite double input, whatever its magnitude.
+// Exact for every finite double input, whatever its magnitude. Shares no code with the others.
 struct ExactKernel {
   static constexpr const char* kName = "exact";
   static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,

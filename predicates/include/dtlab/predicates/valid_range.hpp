@@ -1,15 +1,17 @@
 #pragma once
-// The input range on which the adaptive kernel is exact (derivation in docs/predicates.md).
-// Expansion arithmetic is exact only while no intermediate value overflows or underflows. If
-// every coordinate is 0 or has magnitude in [2^-120, 2^120]:
-//  * every double of magnitude >= 2^-120 is a multiple of 2^-172, so every exact intermediate of
-//    the degree-5 insphere polynomial (and every expansion component) is a multiple of 2^-860,
-//    far above the smallest normal double 2^-1022: nothing underflows, the error bounds' own
-//    products included;
-//  * coordinate differences stay below 2^121 and degree-5 terms below 2^612, far below 2^1023
-//    and the Dekker-split limit 2^996: nothing overflows.
-// The engine maps any input into this range with an exact power-of-two scaling (which changes no
-// predicate sign) and refuses the input when its dynamic range does not fit.
+// The coordinate range on which expansion arithmetic (the exact stages B, C, D of the adaptive
+// kernel and stage D of the filtered kernel) is exact (derivation in docs/predicates.md, Lemma 6).
+// If every coordinate of a call is 0 or has magnitude in [2^-120, 2^120]:
+//  * every such double is a multiple of 2^-172, so every exact intermediate of the degree-5
+//    insphere polynomial of the differences (and of their tails), and every expansion component,
+//    is a multiple of 2^-860, far above the smallest subnormal granularity 2^-1074: no product
+//    loses bits to underflow;
+//  * differences stay below 2^121 and degree-5 terms below 2^612, far below 2^1023 and the
+//    Veltkamp-split limit 2^996: nothing overflows.
+// A call with a coordinate outside this range that stage A (or the semi-static filter) cannot
+// decide goes to the GMP evaluation instead (stage Gmp): adaptive and filtered decide every finite
+// double. The engine scales its input by a power of two so that max |c| lies in [2^99, 2^100)
+// when that is lossless, which puts ordinary inputs entirely inside the range.
 #include <cmath>
 
 #include "dtlab/predicates/point.hpp"
@@ -23,13 +25,18 @@ inline constexpr int kRangeMaxExponent = 120;
 inline constexpr int kScaledMaxExponent = 100;
 
 inline bool in_valid_range(double c) {
-  if (c == 0.0) return true;
   const double m = std::fabs(c);
-  return m >= std::ldexp(1.0, kRangeMinExponent) && m <= std::ldexp(1.0, kRangeMaxExponent);
+  return c == 0.0 || (m >= 0x1p-120 && m <= 0x1p120);
 }
 
 inline bool in_valid_range(const Point3& p) {
   return in_valid_range(p.x) && in_valid_range(p.y) && in_valid_range(p.z);
+}
+
+// Every point of a call within the range.
+template <class... P>
+bool in_expansion_range(const P&... points) {
+  return (in_valid_range(points) && ...);
 }
 
 }  // namespace dtlab::predicates

@@ -1,79 +1,177 @@
 #pragma once
-// The float determinants of orient3d and insphere (Shewchuk's sign) with their permanents: the
-// fast kernel's whole computation and the adaptive kernel's stage A. Inline so that both kernels
-// cost no call; every target that includes this is compiled with -ffp-contract=off (the flag is
-// an interface option of dtlab::predicates) so the stage A error bounds hold as derived.
+// The floating-point determinants of dtlab's decompositions (docs/predicates.md), each with its
+// permanent and its proven stage A bound: the fast kernel's whole computation and the adaptive
+// kernel's stage A. Inline so that both kernels cost no call; every target that includes this is
+// compiled with -ffp-contract=off (an interface option of dtlab::predicates), so the operations
+// are rounded one by one as the operation counts assume.
+//
+// Every value here carries dtlab's sign directly (kernels.hpp). The bound is
+//   C * permanent + (underflow term),
+// C from error_bounds.hpp for this evaluation order, the underflow term from Lemma 4. A
+// difference or product that overflows makes the bound infinite or NaN, so the comparison
+// |det| > bound fails and the call goes on to the exact stages.
+#include <array>
 #include <cmath>
 
+#include "dtlab/predicates/error_bounds.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::predicates::detail {
 
-struct DeterminantTerms {
-  double det;
-  double permanent;
+struct FilteredValue {
+  double det;        // the determinant in floating point, dtlab's sign
+  double bound;      // |det| > bound proves the sign of the exact determinant
+  double permanent;  // for the later stages' bounds
 };
-
-// det[a - d; b - d; c - d] and its permanent.
-inline DeterminantTerms orient3d_terms(const Point3& a, const Point3& b, const Point3& c,
-                                       const Point3& d) {
-  const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
-  const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
-  const double adz = a.z - d.z, bdz = b.z - d.z, cdz = c.z - d.z;
-  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady, adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy, bdxady = bdx * ady;
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-  return {det, permanent};
-}
-
-// Shewchuk's insphere determinant (rows a - e, b - e, c - e, d - e with their squared lengths)
-// and its permanent.
-inline DeterminantTerms insphere_terms(const Point3& a, const Point3& b, const Point3& c,
-                                       const Point3& d, const Point3& e) {
-  const double adx = a.x - e.x, ady = a.y - e.y, adz = a.z - e.z;
-  const double bdx = b.x - e.x, bdy = b.y - e.y, bdz = b.z - e.z;
-  const double cdx = c.x - e.x, cdy = c.y - e.y, cdz = c.z - e.z;
-  const double ddx = d.x - e.x, ddy = d.y - e.y, ddz = d.z - e.z;
-  const double aexbey = adx * bdy, bexaey = bdx * ady;
-  const double bexcey = bdx * cdy, cexbey = cdx * bdy;
-  const double cexdey = cdx * ddy, dexcey = ddx * cdy;
-  const double dexaey = ddx * ady, aexdey = adx * ddy;
-  const double aexcey = adx * cdy, cexaey = cdx * ady;
-  const double bexdey = bdx * ddy, dexbey = ddx * bdy;
-  const double ab = aexbey - bexaey;
-  const double bc = bexcey - cexbey;
-  const double cd = cexdey - dexcey;
-  const double da = dexaey - aexdey;
-  const double ac = aexcey - cexaey;
-  const double bd = bexdey - dexbey;
-  const double abc = adz * bc - bdz * ac + cdz * ab;
-  const double bcd = bdz * cd - cdz * bd + ddz * bc;
-  const double cda = cdz * da + ddz * ac + adz * cd;
-  const double dab = ddz * ab + adz * bd + bdz * da;
-  const double alift = adx * adx + ady * ady + adz * adz;
-  const double blift = bdx * bdx + bdy * bdy + bdz * bdz;
-  const double clift = cdx * cdx + cdy * cdy + cdz * cdz;
-  const double dlift = ddx * ddx + ddy * ddy + ddz * ddz;
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-  const double p_ab = std::fabs(aexbey) + std::fabs(bexaey);
-  const double p_bc = std::fabs(bexcey) + std::fabs(cexbey);
-  const double p_cd = std::fabs(cexdey) + std::fabs(dexcey);
-  const double p_da = std::fabs(dexaey) + std::fabs(aexdey);
-  const double p_ac = std::fabs(aexcey) + std::fabs(cexaey);
-  const double p_bd = std::fabs(bexdey) + std::fabs(dexbey);
-  const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz), dz = std::fabs(ddz);
-  const double permanent =
-      (p_cd * bz + p_bd * cz + p_bc * dz) * alift + (p_da * cz + p_ac * dz + p_cd * az) * blift +
-      (p_ab * dz + p_bd * az + p_da * bz) * clift + (p_bc * az + p_ac * bz + p_ab * cz) * dlift;
-  return {det, permanent};
-}
 
 inline int sign_of(double v) {
   return (v > 0.0) - (v < 0.0);
+}
+
+// Lemma 4 for orient3d: six products with cofactor |u_i|, three with cofactor 1.
+inline double orient3d_underflow(double abs_ux, double abs_uy, double abs_uz) {
+  // unit (2 S + 3) = 2 unit ((|ux| + |uy|) + (|uz| + 1.5)), grouped for parallel evaluation.
+  return (2.0 * bounds::kUnderflowUnit) * ((abs_ux + abs_uy) + (abs_uz + 1.5));
+}
+
+// orient3d as the triple product u . (v x w) of u = b - a, v = c - a, w = d - a, expanded along u:
+//   det = u_x (v_y w_z - v_z w_y) + u_y (v_z w_x - v_x w_z) + u_z (v_x w_y - v_y w_x),
+// summed as (x-term + y-term) + z-term.
+inline FilteredValue orient3d_float(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d) {
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+  const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+  const double wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
+  const double yz = vy * wz, zy = vz * wy;  // the products of the cross product v x w
+  const double zx = vz * wx, xz = vx * wz;
+  const double xy = vx * wy, yx = vy * wx;
+  const double det = (ux * (yz - zy) + uy * (zx - xz)) + uz * (xy - yx);
+  const double aux = std::fabs(ux), auy = std::fabs(uy), auz = std::fabs(uz);
+  const double permanent =
+      (aux * (std::fabs(yz) + std::fabs(zy)) + auy * (std::fabs(zx) + std::fabs(xz))) +
+      auz * (std::fabs(xy) + std::fabs(yx));
+  return {det, bounds::kOrient3dA * permanent + orient3d_underflow(aux, auy, auz), permanent};
+}
+
+// The six 2x2 minors of the x and y columns and the six minors of the z and lift columns of the
+// 4x4 matrix with rows (p - e, |p - e|^2), p = a, b, c, d, and the squared lengths.
+struct InsphereMinors {
+  // xy[i][j]: x_i y_j - x_j y_i for the pairs 01 02 03 12 13 23; the same for zl with the lift.
+  double xy01, xy02, xy03, xy12, xy13, xy23;
+  double zl01, zl02, zl03, zl12, zl13, zl23;
+};
+
+// insphere by the Laplace expansion along the column pair (x, y) | (z, lift): with rows
+// r = a - e, b - e, c - e, d - e (indices 0..3), m_ij = x_i y_j - x_j y_i and
+// n_kl = z_k L_l - z_l L_k (L = x^2 + y^2 + z^2),
+//   det4 = (m01 n23 + m23 n01) - (m02 n13 + m13 n02) + (m03 n12 + m12 n03),
+// and dtlab's insphere is the sign of -det4, evaluated as
+//   (m02 n13 + m13 n02) - ((m01 n23 + m23 n01) + (m03 n12 + m12 n03)).
+inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d, const Point3& e) {
+  const double x0 = a.x - e.x, y0 = a.y - e.y, z0 = a.z - e.z;
+  const double x1 = b.x - e.x, y1 = b.y - e.y, z1 = b.z - e.z;
+  const double x2 = c.x - e.x, y2 = c.y - e.y, z2 = c.z - e.z;
+  const double x3 = d.x - e.x, y3 = d.y - e.y, z3 = d.z - e.z;
+  const double lift0 = (x0 * x0 + y0 * y0) + z0 * z0;
+  const double lift1 = (x1 * x1 + y1 * y1) + z1 * z1;
+  const double lift2 = (x2 * x2 + y2 * y2) + z2 * z2;
+  const double lift3 = (x3 * x3 + y3 * y3) + z3 * z3;
+  // x_i y_j products
+  const double x0y1 = x0 * y1, x1y0 = x1 * y0, x0y2 = x0 * y2, x2y0 = x2 * y0;
+  const double x0y3 = x0 * y3, x3y0 = x3 * y0, x1y2 = x1 * y2, x2y1 = x2 * y1;
+  const double x1y3 = x1 * y3, x3y1 = x3 * y1, x2y3 = x2 * y3, x3y2 = x3 * y2;
+  // z_k L_l products
+  const double z0l1 = z0 * lift1, z1l0 = z1 * lift0, z0l2 = z0 * lift2, z2l0 = z2 * lift0;
+  const double z0l3 = z0 * lift3, z3l0 = z3 * lift0, z1l2 = z1 * lift2, z2l1 = z2 * lift1;
+  const double z1l3 = z1 * lift3, z3l1 = z3 * lift1, z2l3 = z2 * lift3, z3l2 = z3 * lift2;
+  const double m01 = x0y1 - x1y0, m02 = x0y2 - x2y0, m03 = x0y3 - x3y0;
+  const double m12 = x1y2 - x2y1, m13 = x1y3 - x3y1, m23 = x2y3 - x3y2;
+  const double n01 = z0l1 - z1l0, n02 = z0l2 - z2l0, n03 = z0l3 - z3l0;
+  const double n12 = z1l2 - z2l1, n13 = z1l3 - z3l1, n23 = z2l3 - z3l2;
+  const double det = (m02 * n13 + m13 * n02) - ((m01 * n23 + m23 * n01) + (m03 * n12 + m12 * n03));
+
+  using std::fabs;
+  const double pm01 = fabs(x0y1) + fabs(x1y0), pm02 = fabs(x0y2) + fabs(x2y0);
+  const double pm03 = fabs(x0y3) + fabs(x3y0), pm12 = fabs(x1y2) + fabs(x2y1);
+  const double pm13 = fabs(x1y3) + fabs(x3y1), pm23 = fabs(x2y3) + fabs(x3y2);
+  const double pn01 = fabs(z0l1) + fabs(z1l0), pn02 = fabs(z0l2) + fabs(z2l0);
+  const double pn03 = fabs(z0l3) + fabs(z3l0), pn12 = fabs(z1l2) + fabs(z2l1);
+  const double pn13 = fabs(z1l3) + fabs(z3l1), pn23 = fabs(z2l3) + fabs(z3l2);
+  const double permanent =
+      ((pm02 * pn13 + pm13 * pn02) + (pm01 * pn23 + pm23 * pn01)) + (pm03 * pn12 + pm12 * pn03);
+  // Lemma 4 with R = the sum of the lifts: the cofactors of all 42 products add up to at most
+  // 96 R^1.5 + 24 R + 6 <= 96 (R + 1)^2.
+  const double r1 = ((lift0 + lift1) + (lift2 + lift3)) + 1.0;
+  const double underflow = (96.0 * bounds::kUnderflowUnit) * (r1 * r1);
+  return {det, bounds::kInsphereA * permanent + underflow, permanent};
+}
+
+// orient2d in the projection that drops `drop`: det[b - a; c - a] of the kept coordinates
+// (u, v) = ((drop + 1) % 3, (drop + 2) % 3).
+inline FilteredValue orient2d_float(const Point3& a, const Point3& b, const Point3& c, int drop) {
+  const int iu = (drop + 1) % 3;
+  const int iv = (drop + 2) % 3;
+  const double bu = coordinate(b, iu) - coordinate(a, iu);
+  const double bv = coordinate(b, iv) - coordinate(a, iv);
+  const double cu = coordinate(c, iu) - coordinate(a, iu);
+  const double cv = coordinate(c, iv) - coordinate(a, iv);
+  const double left = bu * cv;
+  const double right = bv * cu;
+  const double det = left - right;
+  const double permanent = std::fabs(left) + std::fabs(right);
+  return {det, bounds::kOrient2dA * permanent + 2.0 * bounds::kUnderflowUnit, permanent};
+}
+
+// The lifted in-circle determinant of four coplanar points: rows (u, v, L) of p - d for
+// p = a, b, c, L the 3D squared length, expanded along the lift column:
+//   det = L_a (u_b v_c - u_c v_b) + L_b (u_c v_a - u_a v_c) + L_c (u_a v_b - u_b v_a),
+// summed as (a-term + b-term) + c-term.
+inline FilteredValue incircle_lifted_float(const Point3& a, const Point3& b, const Point3& c,
+                                           const Point3& d, int drop) {
+  const int iu = (drop + 1) % 3;
+  const int iv = (drop + 2) % 3;
+  const double ua = coordinate(a, iu) - coordinate(d, iu);
+  const double va = coordinate(a, iv) - coordinate(d, iv);
+  const double wa = coordinate(a, drop) - coordinate(d, drop);
+  const double ub = coordinate(b, iu) - coordinate(d, iu);
+  const double vb = coordinate(b, iv) - coordinate(d, iv);
+  const double wb = coordinate(b, drop) - coordinate(d, drop);
+  const double uc = coordinate(c, iu) - coordinate(d, iu);
+  const double vc = coordinate(c, iv) - coordinate(d, iv);
+  const double wc = coordinate(c, drop) - coordinate(d, drop);
+  const double lift_a = (ua * ua + va * va) + wa * wa;
+  const double lift_b = (ub * ub + vb * vb) + wb * wb;
+  const double lift_c = (uc * uc + vc * vc) + wc * wc;
+  const double ubvc = ub * vc, ucvb = uc * vb;
+  const double ucva = uc * va, uavc = ua * vc;
+  const double uavb = ua * vb, ubva = ub * va;
+  const double det = (lift_a * (ubvc - ucvb) + lift_b * (ucva - uavc)) + lift_c * (uavb - ubva);
+  using std::fabs;
+  const double permanent =
+      (lift_a * (fabs(ubvc) + fabs(ucvb)) + lift_b * (fabs(ucva) + fabs(uavc))) +
+      lift_c * (fabs(uavb) + fabs(ubva));
+  // Lemma 4 with R = the sum of the lifts: six products with cofactor <= R, nine squares with
+  // cofactor <= 2 R, three products with cofactor 1.
+  const double r = (lift_a + lift_b) + lift_c;
+  const double underflow = bounds::kUnderflowUnit * (24.0 * r + 3.0);
+  return {det, bounds::kIncircleLiftedA * permanent + underflow, permanent};
+}
+
+// orient3d against the exact centroid of v: the sum of the four orientations (orient3d is affine
+// in its last point), summed as (o0 + o1) + (o2 + o3).
+inline FilteredValue orient3d_centroid_float(const Point3& a, const Point3& b, const Point3& c,
+                                             const std::array<Point3, 4>& v) {
+  const FilteredValue o0 = orient3d_float(a, b, c, v[0]);
+  const FilteredValue o1 = orient3d_float(a, b, c, v[1]);
+  const FilteredValue o2 = orient3d_float(a, b, c, v[2]);
+  const FilteredValue o3 = orient3d_float(a, b, c, v[3]);
+  const double det = (o0.det + o1.det) + (o2.det + o3.det);
+  const double permanent = (o0.permanent + o1.permanent) + (o2.permanent + o3.permanent);
+  // The four determinants share u = b - a, so their underflow terms are equal.
+  const double underflow =
+      4.0 * orient3d_underflow(std::fabs(b.x - a.x), std::fabs(b.y - a.y), std::fabs(b.z - a.z));
+  return {det, bounds::kCentroidA * permanent + underflow, permanent};
 }
 
 }  // namespace dtlab::predicates::detail
