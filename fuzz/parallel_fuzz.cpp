@@ -1,6 +1,7 @@
-// bytes -> (method, threads, distribution) + point set -> triangulate with adaptive predicates
-// on 2-4 threads, with random delays while locks are held. Every method must give a sound mesh;
-// every method but burglary a valid one, and burglary a valid one after --repair.
+// bytes -> (method, threads, distribution, kernel) + point set -> triangulate with the adaptive or
+// the filtered kernel on 2-4 threads, with random delays while locks are held. Every method must
+// give a sound mesh; every method but burglary a valid one, and burglary a valid one after
+// --repair.
 #include <cstdint>
 #include <cstdlib>
 
@@ -12,7 +13,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   using dtlab::engine::Method;
-  // First byte: method (3 bits), threads 2-4, distribution, repair.
+  // First byte: method (3 bits), threads 2-4, distribution, repair, kernel.
   const std::uint8_t config = data[0];
   constexpr Method kMethods[] = {Method::Pessimistic, Method::OptimisticDetect,
                                  Method::OptimisticPrevent, Method::Burglary, Method::Batch};
@@ -22,6 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.distribution = (config & 0x20U) != 0 ? dtlab::engine::Distribution::Dynamic
                                                : dtlab::engine::Distribution::Static;
   options.repair = options.method == Method::Burglary && (config & 0x40U) != 0;
+  options.kernel = (config & 0x80U) != 0 ? dtlab::engine::KernelKind::Filtered
+                                         : dtlab::engine::KernelKind::Adaptive;
   options.stress = true;
   options.seed = size;
   options.watchdog_seconds = 20;  // a hang becomes a TriangulationError, reported below

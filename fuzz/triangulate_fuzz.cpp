@@ -1,5 +1,7 @@
 // bytes -> point set -> triangulate with adaptive predicates -> must validate (or be refused with
-// a TriangulationError when it has no tetrahedralization).
+// a TriangulationError when it has no tetrahedralization); the filtered kernel must give the same
+// tetrahedra (the perturbed Delaunay tetrahedralization is unique).
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 
@@ -17,6 +19,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto result = dtlab::engine::triangulate(points, options);
     if (dimension != 3) std::abort();  // triangulated something without a tetrahedralization
     if (!dtlab::engine::validate(points, result.tetrahedra).valid()) std::abort();
+    dtlab::engine::TriangulateOptions filtered = options;
+    filtered.kernel = dtlab::engine::KernelKind::Filtered;
+    auto sorted = [](std::vector<dtlab::engine::Tetrahedron> tets) {
+      for (auto& t : tets) std::sort(t.begin(), t.end());
+      std::sort(tets.begin(), tets.end());
+      return tets;
+    };
+    if (sorted(dtlab::engine::triangulate(points, filtered).tetrahedra) !=
+        sorted(result.tetrahedra)) {
+      std::abort();
+    }
   } catch (const dtlab::engine::TriangulationError&) {
     if (dimension == 3) std::abort();  // refused a valid input
   }

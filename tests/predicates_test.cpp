@@ -395,5 +395,18 @@ TEST(FastKernel, GetsSignsWrongOnSphereAndPlane) {
   EXPECT_EQ(robust_wrong, 0);
 }
 
+// The engine finds duplicate points by exact zeros with the query in any argument position. The
+// column-wise evaluation orders make two equal arguments cancel exactly in floating point, so even
+// the fast kernel returns 0 (a row expansion of orient3d does not: docs/predicates.md).
+RC_GTEST_PROP(FastKernel, RepeatedArgumentGivesExactZero, ()) {
+  auto p = *rc::gen::container<std::vector<Point3>>(5, unit_point());
+  const int i = *rc::gen::inRange(0, 5);
+  const int j = *rc::gen::inRange(0, 5);
+  RC_PRE(i != j);
+  p[static_cast<std::size_t>(j)] = p[static_cast<std::size_t>(i)];
+  RC_ASSERT(FastKernel::insphere(p[0], p[1], p[2], p[3], p[4]) == 0);
+  if (i < 4 && j < 4) RC_ASSERT(FastKernel::orient3d(p[0], p[1], p[2], p[3]) == 0);
+}
+
 }  // namespace
 }  // namespace dtlab::test

@@ -47,12 +47,7 @@ Fixed<384> complementary_pair(const Row& ri, const Row& rj, const Row& rk, const
   return m_ij * n_kl + m_kl * n_ij;
 }
 
-// First-order change of the minors caused by the tails, and the float minors themselves.
-struct MinorPair {
-  double m, dm;  // x_i y_j - x_j y_i and its first-order change
-  double n, dn;  // z_k L_l - z_l L_k and its first-order change
-};
-
+// First-order changes caused by the tails, with the float values of the rounded rows.
 double xy_change(const Row& p, const Row& q) {
   return (p.tx * q.y + p.x * q.ty) - (q.tx * p.y + q.x * p.ty);
 }

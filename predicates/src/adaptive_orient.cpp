@@ -1,5 +1,6 @@
-// Adaptive orient3d (stages B, C, D), the centroid test and orient2d, for dtlab's triple-product
-// decomposition u . (v x w) with u = b - a, v = c - a, w = d - a (docs/predicates.md).
+// Adaptive orient3d (stages B, C, D), the centroid test and orient2d, for dtlab's decomposition
+// about d along the x column: with rows u = a - d, v = b - d, w = c - d and (r, s, t) running
+// cyclically over (u, v, w), orient3d = sum r_x (s_z t_y - s_y t_z) (docs/predicates.md).
 #include <cmath>
 
 #include "dtlab/predicates/error_bounds.hpp"
@@ -33,7 +34,7 @@ bool has_tail(const RoundedVector& r) {
   return r.x.tail != 0.0 || r.y.tail != 0.0 || r.z.tail != 0.0;
 }
 
-// One component of the cross product v x w on the rounded values, exactly: p q' - p' q.
+// One (z, y) minor on the rounded values, exactly: p q' - p' q.
 Fixed<4> exact_minor(double p, double q_prime, double p_prime, double q) {
   return detail::exact_product(p, q_prime) - detail::exact_product(p_prime, q);
 }
@@ -43,15 +44,15 @@ Fixed<4> exact_minor(double p, double q_prime, double p_prime, double q) {
 StagedSign AdaptiveKernel::orient3d_beyond_a(const Point3& a, const Point3& b, const Point3& c,
                                              const Point3& d, double permanent) {
   if (!in_expansion_range(a, b, c, d)) return {ExactKernel::orient3d(a, b, c, d), Stage::Gmp};
-  const RoundedVector u = rounded_vector(b, a);
-  const RoundedVector v = rounded_vector(c, a);
-  const RoundedVector w = rounded_vector(d, a);
+  const RoundedVector u = rounded_vector(a, d);
+  const RoundedVector v = rounded_vector(b, d);
+  const RoundedVector w = rounded_vector(c, d);
 
-  // Stage B: the triple product of the rounded differences, exactly (Lemma 2).
+  // Stage B: the determinant of the rounded differences, exactly (Lemma 2).
   const Fixed<24> on_rounded =
-      (exact_minor(v.y.value, w.z.value, v.z.value, w.y.value) * u.x.value +
-       exact_minor(v.z.value, w.x.value, v.x.value, w.z.value) * u.y.value) +
-      exact_minor(v.x.value, w.y.value, v.y.value, w.x.value) * u.z.value;
+      (exact_minor(v.z.value, w.y.value, v.y.value, w.z.value) * u.x.value +
+       exact_minor(w.z.value, u.y.value, w.y.value, u.z.value) * v.x.value) +
+      exact_minor(u.z.value, v.y.value, u.y.value, v.z.value) * w.x.value;
   double det = on_rounded.approximate();
   const double bound_b = bounds::kOrient3dB * permanent;
   if (det > bound_b || -det > bound_b) return {detail::sign_of(det), Stage::B};
@@ -59,21 +60,16 @@ StagedSign AdaptiveKernel::orient3d_beyond_a(const Point3& a, const Point3& b, c
     return {on_rounded.sign(), Stage::B};  // the differences were exact: so is the value
   }
 
-  // Stage C (Lemma 3): add the terms of first order in the tails,
-  //   tail(u) . (v x w) + u . (tail(v) x w + v x tail(w)),
-  // with the cross product v x w in floating point.
-  const double cx = v.y.value * w.z.value - v.z.value * w.y.value;
-  const double cy = v.z.value * w.x.value - v.x.value * w.z.value;
-  const double cz = v.x.value * w.y.value - v.y.value * w.x.value;
-  const double dx =
-      (v.y.tail * w.z.value + v.y.value * w.z.tail) - (v.z.tail * w.y.value + v.z.value * w.y.tail);
-  const double dy =
-      (v.z.tail * w.x.value + v.z.value * w.x.tail) - (v.x.tail * w.z.value + v.x.value * w.z.tail);
-  const double dz =
-      (v.x.tail * w.y.value + v.x.value * w.y.tail) - (v.y.tail * w.x.value + v.y.value * w.x.tail);
-  const double correction = ((u.x.tail * cx + u.x.value * dx) + (u.y.tail * cy + u.y.value * dy)) +
-                            (u.z.tail * cz + u.z.value * dz);
-  det += correction;
+  // Stage C (Lemma 3): add the terms of first order in the tails: for each cyclic (r, s, t),
+  //   tail(r_x) m_st + r_x (tail(s_z) t_y + s_z tail(t_y) - tail(s_y) t_z - s_y tail(t_z)),
+  // m_st = s_z t_y - s_y t_z in floating point.
+  auto first_order = [](const RoundedVector& r, const RoundedVector& s, const RoundedVector& t) {
+    const double minor = s.z.value * t.y.value - s.y.value * t.z.value;
+    const double change = (s.z.tail * t.y.value + s.z.value * t.y.tail) -
+                          (s.y.tail * t.z.value + s.y.value * t.z.tail);
+    return r.x.tail * minor + r.x.value * change;
+  };
+  det += (first_order(u, v, w) + first_order(v, w, u)) + first_order(w, u, v);
   const double bound_c =
       bounds::kOrient3dC * permanent + bounds::kCorrectedRelative * std::fabs(det);
   if (det > bound_c || -det > bound_c) return {detail::sign_of(det), Stage::C};

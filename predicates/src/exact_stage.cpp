@@ -30,14 +30,14 @@ Bounded exact_coordinate_difference(const Point3& p, const Point3& q, int axis) 
 }  // namespace
 
 Fixed<192> orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  const ExactVector u = exact_vector(b, a);
-  const ExactVector v = exact_vector(c, a);
-  const ExactVector w = exact_vector(d, a);
-  // u . (v x w), expanded along u
-  const Fixed<16> cross_x = v.y * w.z - v.z * w.y;
-  const Fixed<16> cross_y = v.z * w.x - v.x * w.z;
-  const Fixed<16> cross_z = v.x * w.y - v.y * w.x;
-  return (u.x * cross_x + u.y * cross_y) + u.z * cross_z;
+  const ExactVector u = exact_vector(a, d);
+  const ExactVector v = exact_vector(b, d);
+  const ExactVector w = exact_vector(c, d);
+  // sum over cyclic (r, s, t) of r_x (s_z t_y - s_y t_z)
+  const Fixed<16> minor_vw = v.z * w.y - v.y * w.z;
+  const Fixed<16> minor_wu = w.z * u.y - w.y * u.z;
+  const Fixed<16> minor_uv = u.z * v.y - u.y * v.z;
+  return (u.x * minor_vw + v.x * minor_wu) + w.x * minor_uv;
 }
 
 int orient3d_exact_sign(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {

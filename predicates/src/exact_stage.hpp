@@ -13,7 +13,7 @@ namespace dtlab::predicates::detail {
 // outgrew its capacity: the caller decides with GMP (fixed_expansion.hpp, Bounded).
 inline constexpr int kUndecided = 2;
 
-// det[b - a; c - a; d - a] exactly.
+// det[b - a; c - a; d - a] exactly, in the column form of detail::orient3d_float.
 Fixed<192> orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 
 int orient3d_exact_sign(const Point3& a, const Point3& b, const Point3& c, const Point3& d);

@@ -1,8 +1,13 @@
 #pragma once
-// Expansions held in fixed-capacity arrays on the stack (for the hot exact stages), and growable
-// ones on the heap (for the rare stages whose worst-case length is large). Capacities follow the
-// length rules of the theorems: a sum has at most ne + nf components, a scaling at most 2 ne.
-// Private to the predicates target (compiled with strict floating point flags).
+// Expansions held in fixed-capacity arrays on the stack (for the hot exact stages), and bounded
+// ones (for the stages whose worst-case length is large). Capacities follow the length rules of
+// the theorems: a sum has at most ne + nf components, a scaling at most 2 ne.
+//
+// Invariant: every expansion that enters a sum is strongly nonoverlapping, as the expansion sum
+// (Theorem 13) requires. The outputs of Knuth's sum and Dekker's product are nonadjacent, a sum of
+// strongly nonoverlapping expansions is strongly nonoverlapping, and a scaling is only proven
+// nonoverlapping (Theorem 19), so every scaled expansion is compressed (nonadjacent afterwards,
+// Sect. 2.8) before it is used. Private to the predicates target (strict floating point flags).
 #include <utility>
 
 #include "dtlab/predicates/expansion.hpp"
@@ -14,8 +19,20 @@ struct Fixed {
   double c[N];
   int n = 0;
   [[nodiscard]] int sign() const { return expansion::sign(c, n); }
-  [[nodiscard]] double approximate() const { return expansion::approximate(c, n); }
+  // Within one ulp of the value (2 eps relative): the largest component after compression.
+  [[nodiscard]] double approximate() const {
+    double h[N];
+    const int nh = expansion::compress(c, n, h);
+    return h[nh - 1];
+  }
 };
+
+// b * e, compressed (see the invariant above).
+template <int A>
+int scale_compressed(const Fixed<A>& e, double b, double* h) {
+  const int n = expansion::scale(e.c, e.n, b, h);
+  return expansion::compress(h, n, h);
+}
 
 inline Fixed<2> exact_difference(double a, double b) {
   const expansion::Exact2 d = expansion::difference(a, b);
@@ -54,7 +71,7 @@ Fixed<A + B> operator-(const Fixed<A>& e, const Fixed<B>& f) {
 template <int A>
 Fixed<2 * A> operator*(const Fixed<A>& e, double b) {
   Fixed<2 * A> h;
-  h.n = expansion::scale(e.c, e.n, b, h.c);
+  h.n = scale_compressed(e, b, h.c);
   return h;
 }
 
@@ -63,7 +80,7 @@ template <int A, int B>
 Fixed<2 * A * B> operator*(const Fixed<A>& e, const Fixed<B>& f) {
   Fixed<2 * A * B> result;
   if (e.n == 1) {
-    result.n = expansion::scale(f.c, f.n, e.c[0], result.c);
+    result.n = scale_compressed(f, e.c[0], result.c);
     return result;
   }
   double spare[2 * A * B];
@@ -71,10 +88,10 @@ Fixed<2 * A * B> operator*(const Fixed<A>& e, const Fixed<B>& f) {
   double* other = result.c;
   // Start in the buffer that the last addition will not write to, so the result lands in place.
   if ((e.n - 1) % 2 == 0) std::swap(sum, other);
-  int n = expansion::scale(f.c, f.n, e.c[0], sum);
+  int n = scale_compressed(f, e.c[0], sum);
   for (int i = 1; i < e.n; ++i) {
     double part[2 * B];
-    const int np = expansion::scale(f.c, f.n, e.c[i], part);
+    const int np = scale_compressed(f, e.c[i], part);
     n = expansion::add(sum, n, part, np, other);
     std::swap(sum, other);
   }
@@ -129,10 +146,10 @@ class Bounded {
     double spare[kCapacity];
     double* sum = total.c_;
     double* other = spare;
-    int n = expansion::scale(e.c_, e.n_, f.c_[0], sum);
+    int n = e.scaled(f.c_[0], sum);
     for (int i = 1; i < f.n_; ++i) {
       double part[kCapacity];
-      const int np = expansion::scale(e.c_, e.n_, f.c_[i], part);
+      const int np = e.scaled(f.c_[i], part);
       n = expansion::add(sum, n, part, np, other);
       std::swap(sum, other);
     }
@@ -141,6 +158,10 @@ class Bounded {
   }
 
  private:
+  int scaled(double b, double* h) const {
+    const int n = expansion::scale(c_, n_, b, h);
+    return expansion::compress(h, n, h);
+  }
   void copy_from(const Bounded& other) {
     for (int i = 0; i < other.n_; ++i) c_[i] = other.c_[i];
   }

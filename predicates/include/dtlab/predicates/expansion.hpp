@@ -69,10 +69,11 @@ inline Exact2 product(double a, double b) {
 #endif
 }
 
-// Expansion sum (Theorem 13): h = e + f. The components of both are taken in one merged order of
-// increasing magnitude and folded into a running rounded total with Knuth's sum; every nonzero
-// error that falls out is final and is emitted in order. h needs room for ne + nf components;
-// returns its length (at least 1).
+// Expansion sum (Theorem 13): h = e + f, for strongly nonoverlapping e and f (then h is too;
+// exact for any inputs, but the ordering that sign() relies on needs that hypothesis). The
+// components of both are taken in one merged order of increasing magnitude and folded into a
+// running rounded total with Knuth's sum; every nonzero error that falls out is final and is
+// emitted in order. h needs room for ne + nf components; returns its length (at least 1).
 inline int add(const double* e, int ne, const double* f, int nf, double* h) {
   int ie = 0;
   int jf = 0;
@@ -91,9 +92,10 @@ inline int add(const double* e, int ne, const double* f, int nf, double* h) {
   return nh;
 }
 
-// Scaling (Theorem 19): h = b * e. Each component's exact product is two doubles; the low one is
-// folded into the running total with Knuth's sum, the high one with Dekker's sum (it dominates
-// the total by the nonoverlapping property). h needs room for 2 ne components.
+// Scaling (Theorem 19): h = b * e, nonoverlapping for nonoverlapping e. Each component's exact
+// product is two doubles; the low one is folded into the running total with Knuth's sum, the high
+// one with Dekker's sum (it dominates the total by the nonoverlapping property). h needs room for 2
+// ne components.
 inline int scale(const double* e, int ne, double b, double* h) {
   int nh = 0;
   const Exact2 first = product(e[0], b);
@@ -138,8 +140,9 @@ inline int compress(const double* e, int ne, double* h) {
   return nh;
 }
 
-// The sum of the components in floating point, smallest first: within 2 eps of the value
-// (the components below the largest add up to less than one ulp of it).
+// The sum of the components in floating point, smallest first. A rough value only: for a merely
+// nonoverlapping expansion it can be far off ({-2^-54, -(1 - 2^-53), 1} sums to 0); the stages
+// take the largest component of the compressed expansion instead, which is within an ulp.
 inline double approximate(const double* e, int ne) {
   double sum = 0.0;
   for (int i = 0; i < ne; ++i) sum += e[i];

@@ -22,44 +22,42 @@ struct FilteredValue {
   double det;        // the determinant in floating point, dtlab's sign
   double bound;      // |det| > bound proves the sign of the exact determinant
   double permanent;  // for the later stages' bounds
+  double underflow;  // the part of bound that Lemma 4 adds
 };
 
 inline int sign_of(double v) {
   return (v > 0.0) - (v < 0.0);
 }
 
-// Lemma 4 for orient3d: six products with cofactor |u_i|, three with cofactor 1.
-inline double orient3d_underflow(double abs_ux, double abs_uy, double abs_uz) {
-  // unit (2 S + 3) = 2 unit ((|ux| + |uy|) + (|uz| + 1.5)), grouped for parallel evaluation.
-  return (2.0 * bounds::kUnderflowUnit) * ((abs_ux + abs_uy) + (abs_uz + 1.5));
+// Lemma 4 for orient3d: six products with cofactor |r_x|, three with cofactor 1.
+inline double orient3d_underflow(double abs_ux, double abs_vx, double abs_wx) {
+  // unit (2 S + 3) = 2 unit ((|ux| + |vx|) + (|wx| + 1.5)), grouped for parallel evaluation.
+  return (2.0 * bounds::kUnderflowUnit) * ((abs_ux + abs_vx) + (abs_wx + 1.5));
 }
 
-// orient3d as the triple product u . (v x w) of u = b - a, v = c - a, w = d - a, expanded along u:
-//   det = u_x (v_y w_z - v_z w_y) + u_y (v_z w_x - v_x w_z) + u_z (v_x w_y - v_y w_x),
-// summed as (x-term + y-term) + z-term.
+// orient3d about the last point d: rows u = a - d, v = b - d, w = c - d, and
+// det[b - a; c - a; d - a] = -det[u; v; w], expanded along the x column in cyclic order:
+//   det = u_x (v_z w_y - v_y w_z) + v_x (w_z u_y - w_y u_z) + w_x (u_z v_y - u_y v_z),
+// summed as (u-term + v-term) + w-term. Why a column and d: every 2x2 minor is antisymmetric in
+// its two rows, so two equal arguments give two terms that cancel exactly in floating point (or a
+// zero row when one of them is d), and every kernel, fast included, returns an exact 0 when the
+// engine's query point duplicates a vertex, wherever it stands among the arguments.
 inline FilteredValue orient3d_float(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d) {
-  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-  const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-  const double wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
-  const double yz = vy * wz, zy = vz * wy;  // the products of the cross product v x w
-  const double zx = vz * wx, xz = vx * wz;
-  const double xy = vx * wy, yx = vy * wx;
-  const double det = (ux * (yz - zy) + uy * (zx - xz)) + uz * (xy - yx);
-  const double aux = std::fabs(ux), auy = std::fabs(uy), auz = std::fabs(uz);
+  const double ux = a.x - d.x, uy = a.y - d.y, uz = a.z - d.z;
+  const double vx = b.x - d.x, vy = b.y - d.y, vz = b.z - d.z;
+  const double wx = c.x - d.x, wy = c.y - d.y, wz = c.z - d.z;
+  const double vzwy = vz * wy, vywz = vy * wz;  // the (z, y) minor of rows v, w
+  const double wzuy = wz * uy, wyuz = wy * uz;  // of rows w, u
+  const double uzvy = uz * vy, uyvz = uy * vz;  // of rows u, v
+  const double det = (ux * (vzwy - vywz) + vx * (wzuy - wyuz)) + wx * (uzvy - uyvz);
+  const double aux = std::fabs(ux), avx = std::fabs(vx), awx = std::fabs(wx);
   const double permanent =
-      (aux * (std::fabs(yz) + std::fabs(zy)) + auy * (std::fabs(zx) + std::fabs(xz))) +
-      auz * (std::fabs(xy) + std::fabs(yx));
-  return {det, bounds::kOrient3dA * permanent + orient3d_underflow(aux, auy, auz), permanent};
+      (aux * (std::fabs(vzwy) + std::fabs(vywz)) + avx * (std::fabs(wzuy) + std::fabs(wyuz))) +
+      awx * (std::fabs(uzvy) + std::fabs(uyvz));
+  const double underflow = orient3d_underflow(aux, avx, awx);
+  return {det, bounds::kOrient3dA * permanent + underflow, permanent, underflow};
 }
-
-// The six 2x2 minors of the x and y columns and the six minors of the z and lift columns of the
-// 4x4 matrix with rows (p - e, |p - e|^2), p = a, b, c, d, and the squared lengths.
-struct InsphereMinors {
-  // xy[i][j]: x_i y_j - x_j y_i for the pairs 01 02 03 12 13 23; the same for zl with the lift.
-  double xy01, xy02, xy03, xy12, xy13, xy23;
-  double zl01, zl02, zl03, zl12, zl13, zl23;
-};
 
 // insphere by the Laplace expansion along the column pair (x, y) | (z, lift): with rows
 // r = a - e, b - e, c - e, d - e (indices 0..3), m_ij = x_i y_j - x_j y_i and
@@ -104,7 +102,7 @@ inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Poin
   // 96 R^1.5 + 24 R + 6 <= 96 (R + 1)^2.
   const double r1 = ((lift0 + lift1) + (lift2 + lift3)) + 1.0;
   const double underflow = (96.0 * bounds::kUnderflowUnit) * (r1 * r1);
-  return {det, bounds::kInsphereA * permanent + underflow, permanent};
+  return {det, bounds::kInsphereA * permanent + underflow, permanent, underflow};
 }
 
 // orient2d in the projection that drops `drop`: det[b - a; c - a] of the kept coordinates
@@ -120,7 +118,8 @@ inline FilteredValue orient2d_float(const Point3& a, const Point3& b, const Poin
   const double right = bv * cu;
   const double det = left - right;
   const double permanent = std::fabs(left) + std::fabs(right);
-  return {det, bounds::kOrient2dA * permanent + 2.0 * bounds::kUnderflowUnit, permanent};
+  const double underflow = 2.0 * bounds::kUnderflowUnit;
+  return {det, bounds::kOrient2dA * permanent + underflow, permanent, underflow};
 }
 
 // The lifted in-circle determinant of four coplanar points: rows (u, v, L) of p - d for
@@ -155,7 +154,7 @@ inline FilteredValue incircle_lifted_float(const Point3& a, const Point3& b, con
   // cofactor <= 2 R, three products with cofactor 1.
   const double r = (lift_a + lift_b) + lift_c;
   const double underflow = bounds::kUnderflowUnit * (24.0 * r + 3.0);
-  return {det, bounds::kIncircleLiftedA * permanent + underflow, permanent};
+  return {det, bounds::kIncircleLiftedA * permanent + underflow, permanent, underflow};
 }
 
 // orient3d against the exact centroid of v: the sum of the four orientations (orient3d is affine
@@ -168,10 +167,8 @@ inline FilteredValue orient3d_centroid_float(const Point3& a, const Point3& b, c
   const FilteredValue o3 = orient3d_float(a, b, c, v[3]);
   const double det = (o0.det + o1.det) + (o2.det + o3.det);
   const double permanent = (o0.permanent + o1.permanent) + (o2.permanent + o3.permanent);
-  // The four determinants share u = b - a, so their underflow terms are equal.
-  const double underflow =
-      4.0 * orient3d_underflow(std::fabs(b.x - a.x), std::fabs(b.y - a.y), std::fabs(b.z - a.z));
-  return {det, bounds::kCentroidA * permanent + underflow, permanent};
+  const double underflow = (o0.underflow + o1.underflow) + (o2.underflow + o3.underflow);
+  return {det, bounds::kCentroidA * permanent + underflow, permanent, underflow};
 }
 
 }  // namespace dtlab::predicates::detail

@@ -45,13 +45,13 @@ struct AxisMaxima {
   [[nodiscard]] double largest() const { return std::max(x, std::max(y, z)); }
 };
 
-// orient3d: 6 monomials u_i v_j w_k, each at most mx my mz. A zero axis makes every monomial 0.
+// orient3d: 6 monomials r_x s_z t_y, each at most mx my mz. A zero axis makes every monomial 0.
 inline int orient3d_semi_static(const Point3& a, const Point3& b, const Point3& c,
                                 const Point3& d) {
   AxisMaxima m;
-  m.add(b, a);
-  m.add(c, a);
-  m.add(d, a);
+  m.add(a, d);
+  m.add(b, d);
+  m.add(c, d);
   const double low = m.smallest();
   if (low == 0.0) return 0;
   if (low < 0x1p-190 || m.largest() > 0x1p190) return kFilterUndecided;
@@ -108,13 +108,16 @@ inline int incircle_lifted_semi_static(const Point3& a, const Point3& b, const P
                              kStaticIncircleLifted * ((mu * mv) * (high * high)));
 }
 
-// orient3d_centroid: 24 monomials, each at most mx my mz over u, v and the four w.
+// orient3d_centroid: 24 monomials, each at most mx my mz over the differences of a, b, c from
+// each of the four points of v (each orientation is taken about its own v_r).
 inline int orient3d_centroid_semi_static(const Point3& a, const Point3& b, const Point3& c,
                                          const std::array<Point3, 4>& v) {
   AxisMaxima m;
-  m.add(b, a);
-  m.add(c, a);
-  for (const Point3& p : v) m.add(p, a);
+  for (const Point3& p : v) {
+    m.add(a, p);
+    m.add(b, p);
+    m.add(c, p);
+  }
   const double low = m.smallest();
   if (low == 0.0) return 0;
   if (low < 0x1p-190 || m.largest() > 0x1p190) return kFilterUndecided;
