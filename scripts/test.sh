@@ -3,7 +3,8 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything (skip: DTLAB_SKIP_ASAN=1), and a
 # ThreadSanitizer build of the parallel tests (skip: DTLAB_SKIP_TSAN=1), and each libFuzzer
 # harness for a bounded time (scripts/fuzz.sh; skip: DTLAB_SKIP_FUZZ=1).
-# Ends with one plain summary line "N passed, N failed".
+# Ends with one plain summary line "N passed, N failed". Exits non-zero when any suite fails to
+# configure or build, reports a failed test, runs no test, or prints no summary line.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -13,32 +14,60 @@ total_passed=0
 total_failed=0
 status=0
 
-run_suite() {  # run_suite PRESET BUILD-TARGETS CTEST-REGEX [cmake args...]
+# suite_result NAME PASSED FAILED EXIT-CODE T0: adds a suite to the totals. A suite that failed,
+# ran nothing or exited non-zero counts at least one failure and makes the script fail.
+suite_result() {
+  local name="$1" passed="$2" failed="$3" code="$4" t0="$5" note=""
+  if [ "$code" -ne 0 ] && [ "$failed" -eq 0 ]; then
+    failed=1
+    note=" (exit status $code)"
+  fi
+  if [ $((passed + failed)) -eq 0 ]; then
+    failed=1
+    note=" (no test ran)"
+  fi
+  [ "$failed" -eq 0 ] || status=1
+  total_passed=$((total_passed + passed))
+  total_failed=$((total_failed + failed))
+  echo "suite $name: $passed passed, $failed failed in $(($(date +%s) - t0)) s$note"
+}
+
+run_suite() { # run_suite PRESET BUILD-TARGETS CTEST-REGEX [cmake args...]
   local preset="$1" targets="$2" regex="$3"
   shift 3
   local t0
   t0=$(date +%s)
-  cmake --preset "$preset" -DDTLAB_BUILD_TESTS=ON "$@" >/dev/null
-  if [ -n "$targets" ]; then
-    # shellcheck disable=SC2086
-    cmake --build --preset "$preset" -j"$jobs" --target $targets
-  else
-    cmake --build --preset "$preset" -j"$jobs"
+  local built=0
+  if cmake --preset "$preset" -DDTLAB_BUILD_TESTS=ON "$@" >/dev/null; then
+    if [ -n "$targets" ]; then
+      # shellcheck disable=SC2086
+      cmake --build --preset "$preset" -j"$jobs" --target $targets && built=1
+    else
+      cmake --build --preset "$preset" -j"$jobs" && built=1
+    fi
+  fi
+  if [ "$built" -ne 1 ]; then
+    echo "suite $preset: configure or build FAILED"
+    suite_result "$preset" 0 1 1 "$t0"
+    return 0
   fi
   local log="build/$preset/ctest.log"
+  mkdir -p "build/$preset"
   set +e
+  # The test presets set noTestsAction=error: ctest exits non-zero when it finds no test.
   ctest --preset "$preset" -j"$jobs" --timeout 1200 ${regex:+-R "$regex"} 2>&1 | tee "$log"
   local code=${PIPESTATUS[0]}
   set -e
-  local summary total failed
-  summary=$(grep -E "tests passed, [0-9]+ tests failed out of" "$log" | tail -n1)
-  total=$(echo "$summary" | sed -E 's/.* out of ([0-9]+).*/\1/')
-  failed=$(echo "$summary" | sed -E 's/.*tests passed, ([0-9]+) tests failed.*/\1/')
-  if [ -z "$total" ]; then total=0; failed=1; fi
-  total_passed=$((total_passed + total - failed))
-  total_failed=$((total_failed + failed))
-  [ "$code" -eq 0 ] || status=1
-  echo "suite $preset: $((total - failed)) passed, $failed failed in $(( $(date +%s) - t0 )) s"
+  local summary total=0 failed=0
+  summary=$(grep -E "tests passed, [0-9]+ tests failed out of [0-9]+" "$log" | tail -n1 || true)
+  if [ -n "$summary" ]; then
+    total=$(echo "$summary" | sed -E 's/.* out of ([0-9]+).*/\1/')
+    failed=$(echo "$summary" | sed -E 's/.*tests passed, ([0-9]+) tests failed.*/\1/')
+  else
+    echo "suite $preset: no ctest summary line"
+    failed=1
+  fi
+  suite_result "$preset" $((total - failed > 0 ? total - failed : 0)) "$failed" "$code" "$t0"
 }
 
 run_suite release "" "" -DDTLAB_BUILD_BENCH=ON
@@ -52,19 +81,24 @@ fi
 if [ "${DTLAB_SKIP_FUZZ:-0}" != "1" ]; then
   # Each libFuzzer harness for a bounded time from its corpus (DTLAB_FUZZ_SECONDS, default 45).
   t0=$(date +%s)
+  mkdir -p build
   set +e
-  scripts/fuzz.sh "${DTLAB_FUZZ_SECONDS:-45}" | tee build/fuzz.log
+  scripts/fuzz.sh "${DTLAB_FUZZ_SECONDS:-45}" 2>&1 | tee build/fuzz.log
   code=${PIPESTATUS[0]}
   set -e
   summary=$(grep -E "^fuzz: [0-9]+ passed, [0-9]+ failed" build/fuzz.log | tail -n1 || true)
-  fuzz_passed=$(echo "$summary" | sed -E 's/^fuzz: ([0-9]+) passed.*/\1/')
-  fuzz_failed=$(echo "$summary" | sed -E 's/.* ([0-9]+) failed/\1/')
-  if [ -z "$summary" ]; then fuzz_passed=0; fuzz_failed=1; fi
-  total_passed=$((total_passed + fuzz_passed))
-  total_failed=$((total_failed + fuzz_failed))
-  [ "$code" -eq 0 ] || status=1
-  echo "suite fuzz: $fuzz_passed passed, $fuzz_failed failed in $(( $(date +%s) - t0 )) s"
+  fuzz_passed=0
+  fuzz_failed=0
+  if [ -n "$summary" ]; then
+    fuzz_passed=$(echo "$summary" | sed -E 's/^fuzz: ([0-9]+) passed.*/\1/')
+    fuzz_failed=$(echo "$summary" | sed -E 's/.* ([0-9]+) failed.*/\1/')
+  else
+    echo "suite fuzz: no summary line"
+    fuzz_failed=1
+  fi
+  suite_result fuzz "$fuzz_passed" "$fuzz_failed" "$code" "$t0"
 fi
-echo "test time: $(( $(date +%s) - start )) s on $jobs cores"
+echo "test time: $(($(date +%s) - start)) s on $jobs cores"
+[ "$total_failed" -eq 0 ] || status=1
 echo "$total_passed passed, $total_failed failed"
 exit "$status"
