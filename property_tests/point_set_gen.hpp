@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -42,7 +43,8 @@ inline rc::Gen<Point3> small_integer_point(int range) {
                       });
 }
 
-// Maps integer points into a family's shape: exact transformations keep the degeneracies.
+// Maps integer points into a family's shape: exact transformations keep the degeneracies (uniform
+// and sphere round on purpose, to be nearly degenerate).
 inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> pts, int salt) {
   for (auto& p : pts) {
     if (family == "uniform") {
@@ -57,21 +59,47 @@ inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> 
     } else if (family == "lattice") {
       p = {p.x + 0x1p30, p.y + 0x1p30, p.z + 0x1p30};
     } else if (family == "tiny") {
-      p = {p.x * 1e-150, p.y * 1e-150, p.z * 1e-150};
+      // 2^-500 (about 3e-151) and 2^500: powers of two, so the scaling is exact and keeps every
+      // tie (a factor like 1e-150 would round k * 1e-150 and break some of them).
+      p = {p.x * 0x1p-500, p.y * 0x1p-500, p.z * 0x1p-500};
     } else if (family == "huge") {
-      p = {p.x * 1e150, p.y * 1e150, p.z * 1e150};
+      p = {p.x * 0x1p500, p.y * 0x1p500, p.z * 0x1p500};
     } else if (family == "wide") {
       // Magnitudes 2^1076 apart: some x are subnormal (exactly k * 2^-1074), so even after the
       // engine's lossless scaling the input leaves the expansion range and the adaptive and
       // filtered kernels must hand undecided calls to GMP. Nearly coplanar on x = 0 besides.
       if (static_cast<int>(p.y) % 3 == 0) p.x = std::ldexp(p.x, -1074);
     } else if (family == "near-duplicates") {
-      p.x += 1.0;  // away from 0, so that the neighbour 1 ulp up is not a denormal
-      if (static_cast<int>(p.y) % 3 == 0) p.x = std::nextafter(p.x, 100.0);
+      // Away from 0 (exact), so that a few ulps either way are normal numbers; point_set_case
+      // then adds nudged copies (near_duplicate_copies).
+      p = {p.x + 1.0, p.y + 1.0, p.z + 1.0};
     }
     // "grid" and "duplicates" keep the integers (ties and repeats are already frequent).
   }
   return pts;
+}
+
+// v moved by |ulps| units in the last place, up for ulps > 0 and down for ulps < 0.
+inline double ulps_away(double v, int ulps) {
+  const double toward = ulps > 0 ? HUGE_VAL : -HUGE_VAL;
+  for (int i = 0; i < std::abs(ulps); ++i) v = std::nextafter(v, toward);
+  return v;
+}
+
+// Appends, for every other point, a copy moved by 1 to 3 ulps in one, two or three coordinates,
+// up or down (as generators/ does for its near-duplicates family): each copy is a real near
+// duplicate of a point of the set, a few ulps away from it, never equal to it.
+inline void near_duplicate_copies(std::vector<Point3>& pts, int salt) {
+  const std::size_t n = pts.size();
+  for (std::size_t i = 0; i < n; i += 2) {
+    const int k = static_cast<int>(i / 2) + salt;
+    const int ulps = (1 + k % 3) * (k % 2 == 0 ? 1 : -1);
+    Point3 q = pts[i];
+    q.x = ulps_away(q.x, ulps);
+    if (k % 3 != 0) q.y = ulps_away(q.y, -ulps);
+    if (k % 4 == 3) q.z = ulps_away(q.z, ulps);
+    pts.push_back(q);
+  }
 }
 
 inline const std::vector<std::string>& families() {
@@ -93,7 +121,9 @@ inline rc::Gen<PointSetCase> point_set_case() {
             const std::size_t n = pts.size();
             for (std::size_t i = 0; i < n; i += 2) pts.push_back(pts[i]);
           }
-          return PointSetCase{family, shape(family, pts, v.second)};
+          pts = shape(family, pts, v.second);
+          if (family == "near-duplicates") near_duplicate_copies(pts, v.second);
+          return PointSetCase{family, pts};
         });
   });
 }
