@@ -15,6 +15,7 @@ namespace {
 
 using engine::Distribution;
 using engine::Method;
+using predicates::Point3;
 
 std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
   for (auto& x : t) std::sort(x.begin(), x.end());
@@ -105,6 +106,30 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   }
   // Oversubscribed threads with delays while locks are held: deadlocks do happen.
   EXPECT_GT(burglaries, 0u);
+}
+
+// The fast kernel contradicts itself on inexact near-degenerate input. Its insertions whose
+// location fails every time used to be retried as lock conflicts, up to 10^5 times with growing
+// sleeps: a 12^3 grid on [0, 1] (spacing 1/11, inexact) stalled for minutes on 2 threads. Every
+// method must finish like the sequential engine, its failures counted as abandoned insertions.
+TEST(ParallelMethods, FastKernelFinishesOnAnInexactGrid) {
+  std::vector<Point3> points;
+  for (int i = 0; i < 12; ++i) {
+    for (int j = 0; j < 12; ++j) {
+      for (int k = 0; k < 12; ++k) points.push_back({i / 11.0, j / 11.0, k / 11.0});
+    }
+  }
+  for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
+                         Method::Burglary, Method::Batch}) {
+    engine::TriangulateOptions options;
+    options.kernel = engine::KernelKind::Fast;
+    options.method = m;
+    options.threads = 2;
+    options.watchdog_seconds = 60;  // a stall becomes a TriangulationError and fails the test
+    engine::TriangulationStats stats;
+    ASSERT_NO_THROW(stats = engine::triangulate(points, options).stats) << engine::to_string(m);
+    EXPECT_GT(stats.tetrahedra, 0u) << engine::to_string(m);
+  }
 }
 
 TEST(ParallelMethods, DistributionsCoverEveryPointOnce) {

@@ -37,7 +37,10 @@ template <class K, class Sync = NoSync>
 class IncrementalDelaunay {
  public:
   // GaveUp: the policy refused a lock (deadlock detected or prevented); everything was undone.
-  enum class Outcome { Inserted, Duplicate, Abandoned, GaveUp };
+  // GaveUp: a lock conflict (retry later, after backing off). Unlocated: the descent found no
+  // tetrahedron containing the point: a rollback raced it, or an inexact kernel contradicted
+  // itself, which repeats on every try (retry a bounded number of times, then abandon).
+  enum class Outcome { Inserted, Duplicate, Abandoned, GaveUp, Unlocated };
 
   // The sequential engine: owns its mesh.
   IncrementalDelaunay(const std::vector<Point3>& points, const TriangulateOptions& options,
@@ -111,7 +114,10 @@ class IncrementalDelaunay {
     stats_.seconds.location += std::chrono::duration<double>(t1 - t0).count();
     if (t == kNoTet) {
       // With other threads rolling back under the descent, try the point again later.
-      if constexpr (Sync::kLocks) return give_up();
+      if constexpr (Sync::kLocks) {
+        give_up();
+        return Outcome::Unlocated;
+      }
       return Outcome::Abandoned;
     }
 

@@ -123,13 +123,18 @@ class WorkSource {
     if (retry_position_ < retry_.size()) return retry_[retry_position_++];
     return std::nullopt;
   }
-  // Queues v again; false when it was given up too often (then the caller abandons it).
-  bool retry_later(std::uint32_t v) {
-    if (++attempts_[v] > kMaxAttempts) return false;
+  // Queues v again; false when it was given up more than `limit` times (then the caller
+  // abandons it).
+  bool retry_later(std::uint32_t v, int limit) {
+    if (++attempts_[v] > limit) return false;
     retry_.push_back(v);
     return true;
   }
-  static constexpr int kMaxAttempts = 100000;
+  // Lock conflicts end when the other thread finishes; a location that failed this often is an
+  // inexact kernel's contradiction, which every retry repeats (an exact kernel's location fails
+  // only when a rollback races the descent).
+  static constexpr int kMaxLockAttempts = 100000;
+  static constexpr int kMaxLocationAttempts = 16;
 
  private:
   const std::vector<std::uint32_t>* own_;
@@ -154,6 +159,7 @@ void count_outcome(typename Dt::Outcome outcome, ThreadStats& t) {
       ++t.abandoned;
       break;
     case Dt::Outcome::GaveUp:
+    case Dt::Outcome::Unlocated:
       ++t.give_ups;
       break;
   }
@@ -316,8 +322,14 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       if (table.stop.load(std::memory_order_relaxed)) break;
       const auto outcome = dt.insert(*v);
       count_outcome<decltype(dt)>(outcome, counters);
-      if (outcome == decltype(dt)::Outcome::GaveUp) {
-        if (!work.retry_later(*v)) {
+      if (outcome == decltype(dt)::Outcome::Unlocated) {
+        // No back-off: no other thread is waiting for anything of ours.
+        if (!work.retry_later(*v, WorkSource::kMaxLocationAttempts)) {
+          ++counters.abandoned;
+          progress.fetch_add(1, std::memory_order_relaxed);
+        }
+      } else if (outcome == decltype(dt)::Outcome::GaveUp) {
+        if (!work.retry_later(*v, WorkSource::kMaxLockAttempts)) {
           ++counters.abandoned;
           progress.fetch_add(1, std::memory_order_relaxed);
         }

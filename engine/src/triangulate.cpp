@@ -84,6 +84,7 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
         ++stats.duplicates;
         break;
       case IncrementalDelaunay<K>::Outcome::GaveUp:  // no policy gives up in the sequential engine
+      case IncrementalDelaunay<K>::Outcome::Unlocated:
       case IncrementalDelaunay<K>::Outcome::Abandoned:
         ++stats.abandoned_insertions;
         break;
