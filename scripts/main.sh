@@ -11,9 +11,14 @@ seed="${SEED:-1}"
 echo "== dtlab info $input --seed $seed"
 "$dtlab" info "$input" --seed "$seed"
 echo
-for kernel in fast adaptive; do
+status=0
+for kernel in fast adaptive filtered; do
   echo "== dtlab triangulate $input --seed $seed --predicates $kernel --validate"
-  "$dtlab" triangulate "$input" --seed "$seed" --predicates "$kernel" --validate || true
+  code=0
+  "$dtlab" triangulate "$input" --seed "$seed" --predicates "$kernel" --validate || code=$?
+  # An invalid mesh (exit 1) is a result for the fast kernel; for the exact ones it is a failure.
+  if [ "$code" -ne 0 ] && { [ "$kernel" != fast ] || [ "$code" -ne 1 ]; }; then status=1; fi
   echo
 done
 echo "machine: $(nproc) cores, $(uname -m), $(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -n1)"
+exit "$status"
