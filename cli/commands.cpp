@@ -92,7 +92,7 @@ int run_triangulate(const TriangulateArgs& args) {
   const engine::Triangulation result = engine::triangulate(points, options);
 
   std::optional<engine::ValidationReport> report;
-  if (args.validate) report = engine::validate(points, result.tetrahedra);
+  if (args.validate) report = engine::validate(points, result.tetrahedra, args.validate_with);
 
   if (!args.output.empty()) {
     if (ends_with(args.output, ".ele")) {
@@ -190,21 +190,23 @@ int run_triangulate(const TriangulateArgs& args) {
     if (report) {
       std::printf(
           "  validation (%s predicates): %s; non-Delaunay faces %llu, reflex boundary edges %llu, "
-          "consistent: %s, mesh consistent: %s\n",
+          "volume = hull volume: %s, consistent: %s, mesh consistent: %s\n",
           report->kernel.c_str(), report->valid() ? "VALID" : "INVALID",
           static_cast<unsigned long long>(report->non_delaunay_faces),
           static_cast<unsigned long long>(report->reflex_boundary_edges),
-          report->consistent() ? "yes" : "no", report->mesh_consistent() ? "yes" : "no");
+          report->volume_mismatch == 0 ? "yes" : "NO", report->consistent() ? "yes" : "no",
+          report->mesh_consistent() ? "yes" : "no");
     }
   }
   return report && !report->valid() ? 1 : 0;
 }
 
-int run_validate(const std::string& points_path, const std::string& mesh) {
+int run_validate(const std::string& points_path, const std::string& mesh,
+                 engine::ValidateWith kernel) {
   const auto points = io::read_points(points_path);
   const int base = io::node_index_base(points_path);
   const auto tets = io::read_ele(mesh, points.size(), base);
-  const engine::ValidationReport report = engine::validate(points, tets);
+  const engine::ValidationReport report = engine::validate(points, tets, kernel);
   std::cout << report.json() << "\n";
   return report.valid() ? 0 : 1;
 }

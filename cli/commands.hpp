@@ -5,6 +5,7 @@
 #include <string>
 
 #include "dtlab/engine/triangulate.hpp"
+#include "dtlab/engine/validator.hpp"
 
 namespace dtlab::cli {
 
@@ -14,6 +15,7 @@ struct TriangulateArgs {
   std::string stats;
   int threads = 1;
   bool validate = false;
+  engine::ValidateWith validate_with = engine::ValidateWith::Adaptive;
   engine::TriangulateOptions options;
 };
 
@@ -21,7 +23,7 @@ int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed,
                  const std::string& output);
 int run_info(const std::string& input, std::uint64_t seed);
 int run_triangulate(const TriangulateArgs& args);
-int run_validate(const std::string& points, const std::string& mesh);
+int run_validate(const std::string& points, const std::string& mesh, engine::ValidateWith kernel);
 int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel);
 
 }  // namespace dtlab::cli

@@ -78,6 +78,12 @@ int main(int argc, char** argv) {
                   "mesh output (.ele writes .node beside it, or .vtu)");
   tri->add_option("--stats", targs.stats, "write stats JSON to FILE, or - for stdout");
   tri->add_flag("--validate", targs.validate, "check the result with the exact validator");
+  const std::map<std::string, dtlab::engine::ValidateWith> validators{
+      {"adaptive", dtlab::engine::ValidateWith::Adaptive},
+      {"exact", dtlab::engine::ValidateWith::Exact}};
+  tri->add_option("--validate-with", targs.validate_with,
+                  "the validator's kernel: adaptive (default) | exact (GMP, independent)")
+      ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
   tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
                   "flip bound per insertion (abandon beyond)");
 
@@ -86,6 +92,11 @@ int main(int argc, char** argv) {
   auto* validate = app.add_subcommand("validate", "exact validation of a mesh (.node + .ele)");
   validate->add_option("POINTS", points_path, "the points (.node, .xyz, ...)")->required();
   validate->add_option("MESH", mesh_path, "the tetrahedra (.ele)")->required();
+  dtlab::engine::ValidateWith validate_kernel = dtlab::engine::ValidateWith::Adaptive;
+  validate
+      ->add_option("--validate-with", validate_kernel,
+                   "the validator's kernel: adaptive (default) | exact (GMP, independent)")
+      ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
 
   KernelKind audit_kernel = KernelKind::Adaptive;
   auto* audit =
@@ -109,7 +120,7 @@ int main(int argc, char** argv) {
       targs.options.progress = isatty(STDERR_FILENO) != 0;
       return dtlab::cli::run_triangulate(targs);
     }
-    if (*validate) return dtlab::cli::run_validate(points_path, mesh_path);
+    if (*validate) return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel);
     if (*audit) return dtlab::cli::run_predicates_audit(input, seed, audit_kernel);
   } catch (const dtlab::io::InputError& e) {
     std::fprintf(stderr, "dtlab: error: %s\n", e.what());

@@ -119,6 +119,12 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
     RC_FAIL(name(config) + ": the mesh was unsound before the repair");
   }
   if (!report.valid()) RC_FAIL(name(config) + " invalid: " + report.json());
+  // Small cases again with the independent GMP validator: it must reach the same verdict.
+  if (c.points.size() <= 200) {
+    const auto reference =
+        engine::validate(c.points, result.tetrahedra, engine::ValidateWith::Exact);
+    if (!reference.valid()) RC_FAIL(name(config) + " invalid under GMP: " + reference.json());
+  }
 }
 
 RC_GTEST_PROP(EngineMatrix, EveryConfigurationOnEveryFamily, ()) {

@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/predicates/kernels.hpp"
+#include "exact_volume.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -138,6 +140,45 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
     i = j;
   }
 
+  // Boundary vertices: convex edges do not make a convex surface (a fan that winds twice round an
+  // axis has convex edges), so the surface must be locally convex at every vertex too: every
+  // vertex of v's link lies on the inner side of, or on, every boundary face at v. A closed,
+  // connected, locally convex surface bounds a convex body (van Heijenoort), which the volume check
+  // below then compares with the hull.
+  std::vector<std::array<std::uint32_t, 2>> incidence;  // (vertex, boundary face)
+  incidence.reserve(3 * boundary.size());
+  for (std::size_t f = 0; f < boundary.size(); ++f) {
+    for (const std::uint32_t v : boundary[f])
+      incidence.push_back({v, static_cast<std::uint32_t>(f)});
+  }
+  std::sort(incidence.begin(), incidence.end());
+  std::vector<std::uint32_t> link;
+  for (std::size_t i = 0; i < incidence.size();) {
+    std::size_t j = i;
+    link.clear();
+    while (j < incidence.size() && incidence[j][0] == incidence[i][0]) {
+      for (const std::uint32_t w : boundary[incidence[j][1]]) {
+        if (w != incidence[i][0]) link.push_back(w);
+      }
+      ++j;
+    }
+    std::sort(link.begin(), link.end());
+    link.erase(std::unique(link.begin(), link.end()), link.end());
+    bool convex = true;
+    for (std::size_t k = i; k < j && convex; ++k) {
+      const auto& f = boundary[incidence[k][1]];
+      for (const std::uint32_t w : link) {
+        if (w == f[0] || w == f[1] || w == f[2]) continue;
+        if (K::orient3d(pts[f[0]], pts[f[1]], pts[f[2]], pts[w]) > 0) {
+          convex = false;
+          break;
+        }
+      }
+    }
+    if (!convex) ++r.reflex_boundary_vertices;
+    i = j;
+  }
+
   // Vertex coverage: every distinct point is a vertex, each duplicate set exactly once.
   std::vector<bool> used(n, false);
   std::size_t vertex_count = 0;
@@ -183,6 +224,12 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
   for (const bool u : usable) usable_tets += u ? 1 : 0;
   r.euler_characteristic = static_cast<std::int64_t>(vertex_count) - edge_count +
                            static_cast<std::int64_t>(distinct_faces) - usable_tets;
+
+  // Global: positively oriented, locally consistent tetrahedra with a closed boundary cover the
+  // hull a constant number of times; equal exact volumes pin that number to one.
+  const ExactGrid grid(pts);
+  r.volume_mismatch =
+      six_mesh_volume(pts, tets, usable, grid) == six_hull_volume(pts, grid) ? 0 : 1;
 }
 
 }  // namespace
@@ -190,13 +237,18 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
 bool ValidationReport::consistent() const {
   return invalid_tetrahedra == 0 && non_positive_orientation == 0 && non_manifold_faces == 0 &&
          inconsistent_faces == 0 && open_boundary_edges == 0 && reflex_boundary_edges == 0 &&
-         missing_points == 0 && repeated_duplicates == 0 && euler_characteristic == 1;
+         reflex_boundary_vertices == 0 && missing_points == 0 && repeated_duplicates == 0 &&
+         euler_characteristic == 1 && volume_mismatch == 0;
 }
 
+// With a convex boundary the volumes must match. A reflex boundary edge or vertex means the union
+// of the tetrahedra is not the hull, so the volumes differ by construction; that case is left to
+// the local checks (a probe-point count for it is still open, docs/design.md).
 bool ValidationReport::mesh_consistent() const {
   return invalid_tetrahedra == 0 && non_positive_orientation == 0 && non_manifold_faces == 0 &&
          inconsistent_faces == 0 && open_boundary_edges == 0 && missing_points == 0 &&
-         repeated_duplicates == 0 && euler_characteristic == 1;
+         repeated_duplicates == 0 && euler_characteristic == 1 &&
+         (reflex_boundary_edges > 0 || reflex_boundary_vertices > 0 || volume_mismatch == 0);
 }
 
 bool ValidationReport::valid() const {
@@ -219,14 +271,21 @@ std::string ValidationReport::json() const {
   j["non_delaunay_faces"] = non_delaunay_faces;
   j["open_boundary_edges"] = open_boundary_edges;
   j["reflex_boundary_edges"] = reflex_boundary_edges;
+  j["reflex_boundary_vertices"] = reflex_boundary_vertices;
   j["missing_points"] = missing_points;
   j["repeated_duplicates"] = repeated_duplicates;
   j["euler_characteristic"] = euler_characteristic;
+  j["volume_mismatch"] = volume_mismatch;
   j["kernel"] = kernel;
   return j.dump(2);
 }
 
-ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets) {
+const char* to_string(ValidateWith k) {
+  return k == ValidateWith::Exact ? "exact" : "adaptive";
+}
+
+ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets,
+                          ValidateWith kernel) {
   ValidationReport r;
   r.points = points.size();
   r.tetrahedra = tets.size();
@@ -241,12 +300,17 @@ ValidationReport validate(const std::vector<Point3>& points, const std::vector<T
       if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
     }
   }
+  // Non-finite points are refused by the readers and by triangulate(); here they cannot be judged.
+  if (!finite) throw std::invalid_argument("validate: a coordinate is NaN or infinite");
+  r.kernel = to_string(kernel);
+  if (kernel == ValidateWith::Exact) {
+    check<predicates::ExactKernel>(points, tets, r);  // the independent reference
+    return r;
+  }
   // The adaptive kernel is exact for every finite double (GMP fallback outside the expansion
   // range); the same lossless power-of-two scaling as the engine keeps most calls off that path.
-  // Non-finite points are refused by the readers and by triangulate().
   const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
-  r.kernel = "adaptive";
-  if (finite && scaling.lossless) {
+  if (scaling.lossless) {
     std::vector<Point3> scaled = points;
     for (Point3& p : scaled) {
       p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),

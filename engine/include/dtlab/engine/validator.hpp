@@ -27,10 +27,16 @@ struct ValidationReport {
   std::uint64_t non_delaunay_faces = 0;        // opposite vertex strictly inside the circumsphere
   std::uint64_t open_boundary_edges = 0;       // boundary edge not on exactly two boundary faces
   std::uint64_t reflex_boundary_edges = 0;     // boundary not convex there (union != convex hull)
+  std::uint64_t reflex_boundary_vertices = 0;  // boundary not convex at a vertex (e.g. a fan
+                                               // winding twice round it, with convex edges)
   std::uint64_t missing_points = 0;            // distinct input point that is no vertex
   std::uint64_t repeated_duplicates = 0;       // duplicate set used as a vertex more than once
   std::int64_t euler_characteristic = 0;       // V - E + F - T; 1 for a triangulated ball
-  std::string kernel;                          // the kernel that decided: "adaptive"
+  // Global check: the exact sum of the tetrahedra's signed volumes against the exact volume of
+  // the convex hull of the input points, computed independently of the mesh (CGAL's hull). Equal
+  // volumes pin the number of times consistent tetrahedra cover the hull to one.
+  std::uint64_t volume_mismatch = 0;  // 1 when the two exact volumes differ
+  std::string kernel;                 // the kernel that decided: "adaptive"
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
 
@@ -43,6 +49,12 @@ struct ValidationReport {
   [[nodiscard]] std::string json() const;
 };
 
-ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets);
+// The kernel that decides the validator's predicates: adaptive (the default, the code under test
+// in most runs) or the independent GMP reference.
+enum class ValidateWith { Adaptive, Exact };
+const char* to_string(ValidateWith k);
+
+ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets,
+                          ValidateWith kernel = ValidateWith::Adaptive);
 
 }  // namespace dtlab::engine
