@@ -300,11 +300,36 @@ TEST(Stages, PlanarPredicatesAndCentroid) {
   const predicates::StagedSign on = AdaptiveKernel::incircle_lifted_staged(a, b, c, {1, 1, 0}, 2);
   EXPECT_EQ(on.stage, Stage::D);
   EXPECT_EQ(on.sign, 0);
+  // The centroid of a tetrahedron above the plane abc: stage A; of four points on it: stage D.
+  const predicates::Tetrahedron4 above{Point3{0, 0, 1}, Point3{1, 0, 1}, Point3{0, 1, 1},
+                                       Point3{0, 0, 2}};
+  const predicates::StagedSign clear = AdaptiveKernel::orient3d_centroid_staged(a, b, c, above);
+  EXPECT_EQ(clear.stage, Stage::A);
+  EXPECT_EQ(clear.sign, ExactKernel::orient3d_centroid(a, b, c, above));
   const predicates::Tetrahedron4 flat{a, b, c, Point3{1, 1, 0}};
   const predicates::StagedSign centroid = AdaptiveKernel::orient3d_centroid_staged(a, b, c, flat);
   EXPECT_EQ(centroid.stage, Stage::D);
   EXPECT_EQ(centroid.sign, 0);
   EXPECT_EQ(FilteredKernel::orient3d_centroid_staged(a, b, c, flat).sign, 0);
+}
+
+// The filtered kernel's two stages: the semi-static filter (A) on a clear case, the exact
+// expansions (D) on the cospherical mixed-magnitude case of Stages.InsphereStopsInEachStage.
+TEST(Stages, FilteredStopsInEachStage) {
+  const Point3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  const predicates::StagedSign clear = FilteredKernel::insphere_staged(o, x, y, z, {3, 3, 3});
+  EXPECT_EQ(clear.stage, Stage::A);
+  EXPECT_EQ(clear.sign, ExactKernel::insphere(o, x, y, z, {3, 3, 3}));
+  const double big = 0x1p60;
+  const Point3 p0{big, 1, 0}, p1{1, 0, big}, p2{0, big, 1}, p3{-big, 0, 1}, e{8, -big, 0};
+  const predicates::StagedSign hard = FilteredKernel::insphere_staged(p0, p1, p2, p3, e);
+  EXPECT_EQ(hard.stage, Stage::D);
+  EXPECT_EQ(hard.sign, ExactKernel::insphere(p0, p1, p2, p3, e));
+  const predicates::StagedSign tie = FilteredKernel::orient3d_staged(o, x, y, {3, 5, 0});
+  EXPECT_EQ(tie.stage, Stage::A);  // a vanishing z axis proves the exact 0 at once
+  EXPECT_EQ(tie.sign, 0);
+  const predicates::StagedSign coplanar = FilteredKernel::orient3d_staged(o, x, y, {1, 1, 0});
+  EXPECT_EQ(coplanar.sign, 0);
 }
 
 // The stage histogram of a RapidCheck run over families built to reach each stage: every stage
