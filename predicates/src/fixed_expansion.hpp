@@ -34,20 +34,18 @@ int scale_compressed(const Fixed<A>& e, double b, double* h) {
   return expansion::compress(h, n, h);
 }
 
-inline Fixed<2> exact_difference(double a, double b) {
-  const expansion::Exact2 d = expansion::difference(a, b);
+// hi + lo as an expansion (lo first, dropped when 0).
+inline Fixed<2> as_expansion(expansion::Exact2 x) {
   Fixed<2> h;
-  if (d.lo != 0.0) h.c[h.n++] = d.lo;
-  h.c[h.n++] = d.hi;
+  if (x.lo != 0.0) h.c[h.n++] = x.lo;
+  h.c[h.n++] = x.hi;
   return h;
 }
-
+inline Fixed<2> exact_difference(double a, double b) {
+  return as_expansion(expansion::difference(a, b));
+}
 inline Fixed<2> exact_product(double a, double b) {
-  const expansion::Exact2 p = expansion::product(a, b);
-  Fixed<2> h;
-  if (p.lo != 0.0) h.c[h.n++] = p.lo;
-  h.c[h.n++] = p.hi;
-  return h;
+  return as_expansion(expansion::product(a, b));
 }
 
 template <int A, int B>

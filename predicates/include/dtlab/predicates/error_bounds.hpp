@@ -27,8 +27,9 @@ constexpr double float_filter(int k1, int kp) {
   return rounded_up(k1, 2.0 * k1 * k1 + k1 * (kp + 2.0) + 1.0);
 }
 
-// Lemma 2: the determinant of the rounded differences, evaluated exactly, approximated by the sum
-// of its expansion's components (relative error at most 2 eps), against the true determinant.
+// Lemma 2: the determinant of the rounded differences, evaluated exactly, approximated by the
+// largest component of its compressed expansion (relative error at most 2 eps), against the true
+// determinant.
 // `degree` factors per monomial, each one rounded difference away from the truth:
 //     B >= gamma(degree) (1 + 2 eps) / (1 - eps)^(kp + 1).
 constexpr double exact_on_rounded(int degree, int kp) {

@@ -143,15 +143,6 @@ inline int compress(const double* e, int ne, double* h) {
   return nh;
 }
 
-// The sum of the components in floating point, smallest first. A rough value only: for a merely
-// nonoverlapping expansion it can be far off ({-2^-54, -(1 - 2^-53), 1} sums to 0); the stages
-// take the largest component of the compressed expansion instead, which is within an ulp.
-inline double approximate(const double* e, int ne) {
-  double sum = 0.0;
-  for (int i = 0; i < ne; ++i) sum += e[i];
-  return sum;
-}
-
 // The sign of the value is the sign of its largest component.
 inline int sign(const double* e, int ne) {
   const double top = e[ne - 1];

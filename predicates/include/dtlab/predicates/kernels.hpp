@@ -74,9 +74,32 @@ struct FastKernel {
   }
 };
 
+// The plain sign functions of a kernel that reports stages: each is its *_staged function's sign.
+template <class Staged>
+struct SignsFromStages {
+  static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+    return Staged::orient3d_staged(a, b, c, d).sign;
+  }
+  static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                      const Point3& e) {
+    return Staged::insphere_staged(a, b, c, d, e).sign;
+  }
+  static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
+    return Staged::orient2d_staged(a, b, c, drop).sign;
+  }
+  static int incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                             int drop) {
+    return Staged::incircle_lifted_staged(a, b, c, d, drop).sign;
+  }
+  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
+                               const Tetrahedron4& v) {
+    return Staged::orient3d_centroid_staged(a, b, c, v).sign;
+  }
+};
+
 // Shewchuk's adaptive-precision scheme (DCG 18, 1997), derived for dtlab's own decompositions
 // (docs/predicates.md). Exact for every finite double; thread safe, no global state.
-struct AdaptiveKernel {
+struct AdaptiveKernel : SignsFromStages<AdaptiveKernel> {
   static constexpr const char* kName = "adaptive";
   // Stage A inline; the later stages out of line.
   static StagedSign orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
@@ -101,25 +124,6 @@ struct AdaptiveKernel {
                                            const Point3& d, int drop);
   static StagedSign orient3d_centroid_staged(const Point3& a, const Point3& b, const Point3& c,
                                              const Tetrahedron4& v);
-
-  static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-    return orient3d_staged(a, b, c, d).sign;
-  }
-  static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                      const Point3& e) {
-    return insphere_staged(a, b, c, d, e).sign;
-  }
-  static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
-    return orient2d_staged(a, b, c, drop).sign;
-  }
-  static int incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                             int drop) {
-    return incircle_lifted_staged(a, b, c, d, drop).sign;
-  }
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
-                               const Tetrahedron4& v) {
-    return orient3d_centroid_staged(a, b, c, v).sign;
-  }
 };
 
 // A semi-static filter: the error bound is a precomputed constant times the product of the
@@ -127,7 +131,7 @@ struct AdaptiveKernel {
 // CGAL's static filters, derived here for dtlab's evaluation orders), valid on a stated magnitude
 // window; outside it, or when the filter cannot decide, the exact expansion evaluation (stage D)
 // or GMP decides. Exact for every finite double.
-struct FilteredKernel {
+struct FilteredKernel : SignsFromStages<FilteredKernel> {
   static constexpr const char* kName = "filtered";
   // The filters inline (detail/semi_static.hpp); the exact evaluation out of line.
   static StagedSign orient3d_staged(const Point3& a, const Point3& b, const Point3& c,
@@ -166,25 +170,6 @@ struct FilteredKernel {
                                           const Point3& d, int drop);
   static StagedSign orient3d_centroid_exact(const Point3& a, const Point3& b, const Point3& c,
                                             const Tetrahedron4& v);
-
-  static int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-    return orient3d_staged(a, b, c, d).sign;
-  }
-  static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                      const Point3& e) {
-    return insphere_staged(a, b, c, d, e).sign;
-  }
-  static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
-    return orient2d_staged(a, b, c, drop).sign;
-  }
-  static int incircle_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                             int drop) {
-    return incircle_lifted_staged(a, b, c, d, drop).sign;
-  }
-  static int orient3d_centroid(const Point3& a, const Point3& b, const Point3& c,
-                               const Tetrahedron4& v) {
-    return orient3d_centroid_staged(a, b, c, v).sign;
-  }
 };
 
 // Arbitrary precision reference (GMP integers after an exact common power-of-two scaling).
