@@ -130,11 +130,12 @@ class WorkSource {
     retry_.push_back(v);
     return true;
   }
-  // Lock conflicts end when the other thread finishes; a location that failed this often is an
-  // inexact kernel's contradiction, which every retry repeats (an exact kernel's location fails
-  // only when a rollback races the descent).
+  // Lock conflicts end when the other thread finishes. A location fails under an exact kernel
+  // only while another thread's rollback races the descent; with the back-off below, 64 attempts
+  // span more than 50 ms, longer than any insertion takes even under --stress, so a location
+  // that fails that often is an inexact kernel's contradiction, which every retry repeats.
   static constexpr int kMaxLockAttempts = 100000;
-  static constexpr int kMaxLocationAttempts = 16;
+  static constexpr int kMaxLocationAttempts = 64;
 
  private:
   const std::vector<std::uint32_t>* own_;
@@ -322,19 +323,18 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       if (table.stop.load(std::memory_order_relaxed)) break;
       const auto outcome = dt.insert(*v);
       count_outcome<decltype(dt)>(outcome, counters);
-      if (outcome == decltype(dt)::Outcome::Unlocated) {
-        // No back-off: no other thread is waiting for anything of ours.
-        if (!work.retry_later(*v, WorkSource::kMaxLocationAttempts)) {
-          ++counters.abandoned;
-          progress.fetch_add(1, std::memory_order_relaxed);
-        }
-      } else if (outcome == decltype(dt)::Outcome::GaveUp) {
-        if (!work.retry_later(*v, WorkSource::kMaxLockAttempts)) {
+      if (outcome == decltype(dt)::Outcome::GaveUp ||
+          outcome == decltype(dt)::Outcome::Unlocated) {
+        const int limit = outcome == decltype(dt)::Outcome::Unlocated
+                              ? WorkSource::kMaxLocationAttempts
+                              : WorkSource::kMaxLockAttempts;
+        if (!work.retry_later(*v, limit)) {
           ++counters.abandoned;
           progress.fetch_add(1, std::memory_order_relaxed);
         }
         // Back off before the next attempt: the thread that waited for our locks must get them
-        // before we take them again, or the two can give up against each other forever.
+        // before we take them again, or the two can give up against each other forever; and a
+        // rollback that raced our descent must finish before we descend again.
         const int shift = std::min(consecutive_give_ups++, 10);
         std::this_thread::sleep_for(std::chrono::microseconds(1 << shift));
       } else {
