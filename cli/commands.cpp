@@ -77,7 +77,8 @@ int run_triangulate(const TriangulateArgs& args) {
   if (args.options.method == engine::Method::Sequential && args.threads != 1) {
     throw std::invalid_argument("the sequential method runs on one thread (--threads 1)");
   }
-  if (args.options.repair && args.options.method != engine::Method::Burglary) {
+  if (args.options.repair != engine::Repair::None &&
+      args.options.method != engine::Method::Burglary) {
     throw std::invalid_argument("--repair is the burglary method's post-check (--method burglary)");
   }
   if (args.threads < 1 || args.threads > 1024) {
@@ -174,14 +175,22 @@ int run_triangulate(const TriangulateArgs& args) {
           c.mesh_consistent ? "yes" : "no");
       if (c.repaired) {
         std::printf(
-            "; repair: %llu flips on the marks -> %llu, sweep %llu flips, rebuilt: %s -> "
-            "%llu",
-            static_cast<unsigned long long>(c.repair_flips),
+            "; repair (%s): %llu flips on the marks -> %llu, sweep %llu flips -> %llu, "
+            "rebuilt: %s -> %llu",
+            engine::to_string(args.options.repair), static_cast<unsigned long long>(c.repair_flips),
             static_cast<unsigned long long>(c.non_delaunay_after_marked),
-            static_cast<unsigned long long>(c.sweep_flips), c.rebuilt ? "yes" : "no",
+            static_cast<unsigned long long>(c.sweep_flips),
+            static_cast<unsigned long long>(c.non_delaunay_after_flips), c.rebuilt ? "yes" : "no",
             static_cast<unsigned long long>(c.non_delaunay_after));
       }
       std::printf("\n");
+      if (c.repaired && c.non_delaunay_after > 0) {
+        std::fprintf(stderr,
+                     "dtlab: warning: the repair flips got stuck with %llu non-Delaunay faces "
+                     "and reflex boundary edges left; --repair=rebuild triangulates again as a "
+                     "last resort\n",
+                     static_cast<unsigned long long>(c.non_delaunay_after));
+      }
     }
     if (s.hull_tetrahedra_lost >= 0) {
       std::printf("  aux-tet: %lld tetrahedra of the exact convex hull triangulation lost\n",

@@ -67,8 +67,14 @@ int main(int argc, char** argv) {
                   "static | dynamic | strips | blocks")
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
   tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
-  tri->add_flag("--repair", targs.options.repair,
-                "burglary: re-legalize the suspicious tetrahedra after the run (post-check)");
+  const std::map<std::string, dtlab::engine::Repair> repairs{
+      {"flips", dtlab::engine::Repair::Flips}, {"rebuild", dtlab::engine::Repair::Rebuild}};
+  tri->add_flag("--repair{flips}", targs.options.repair,
+                "burglary: re-legalize the suspicious tetrahedra after the run (post-check) by "
+                "Lawson flips on the marks, then on every face; 3D flips can get stuck, and what "
+                "they leave is reported. --repair=rebuild then triangulates again sequentially "
+                "(an explicit, reported last resort)")
+      ->transform(CLI::CheckedTransformer(repairs, CLI::ignore_case));
   std::string location = "dag";
   tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
@@ -84,6 +90,10 @@ int main(int argc, char** argv) {
   tri->add_option("--validate-with", targs.validate_with,
                   "the validator's kernel: adaptive (default) | exact (GMP, independent)")
       ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
+  tri->add_option("--watchdog", targs.options.watchdog_seconds,
+                  "parallel methods: stop and fail a run in which no insertion finished for this "
+                  "many seconds (default 0: 10 s + 100 us per point)")
+      ->check(CLI::NonNegativeNumber);
   tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
                   "flip bound per insertion (abandon beyond)");
 

@@ -22,12 +22,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.threads = 2 + static_cast<int>((config >> 3) % 3U);
   options.distribution = (config & 0x20U) != 0 ? dtlab::engine::Distribution::Dynamic
                                                : dtlab::engine::Distribution::Static;
-  options.repair = options.method == Method::Burglary && (config & 0x40U) != 0;
+  options.repair = options.method == Method::Burglary && (config & 0x40U) != 0
+                       ? dtlab::engine::Repair::Rebuild
+                       : dtlab::engine::Repair::None;
   options.kernel = (config & 0x80U) != 0 ? dtlab::engine::KernelKind::Filtered
                                          : dtlab::engine::KernelKind::Adaptive;
   options.stress = true;
   options.seed = size;
-  options.watchdog_seconds = 20;  // a hang becomes a TriangulationError, reported below
+  // The watchdog (10 s + 100 us per point by default) turns a hang into a TriangulationError.
   const auto points = dtlab::fuzz::points_from_bytes(data + 1, size - 1, 300);
   const int dimension = dtlab::engine::analyze(points).dimension;
   try {
@@ -35,7 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (dimension != 3) std::abort();
     const auto report = dtlab::engine::validate(points, result.tetrahedra);
     if (!report.mesh_consistent()) std::abort();
-    const bool must_be_valid = options.method != Method::Burglary || options.repair;
+    const bool must_be_valid =
+        options.method != Method::Burglary || options.repair != dtlab::engine::Repair::None;
     if (must_be_valid && !report.valid()) std::abort();
     if (result.stats.abandoned_insertions != 0) std::abort();
   } catch (const dtlab::engine::TriangulationError&) {

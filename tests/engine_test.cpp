@@ -324,5 +324,36 @@ TEST(AuxTet, LosesHullTetrahedraAndSaysHowMany) {
   EXPECT_EQ(r.stats.hull_tetrahedra_lost == 0, report.valid());
 }
 
+// Neighbour references are 4 * tet + face in 32 bits: the store refuses the 2^30-th slot rather
+// than let a reference wrap (4 * 2^30 is 0 in 32 bits).
+TEST(StoreLimit, TheLastIdBelow2To30IsTheLastSlot) {
+  using engine::TetStore;
+  TetStore store;
+  store.skip_to_for_testing(TetStore::kMaxTets - 2);
+  EXPECT_EQ(store.allocate(), TetStore::kMaxTets - 2);
+  const engine::TetId last = store.allocate();
+  EXPECT_EQ(last, TetStore::kMaxTets - 1);
+  EXPECT_EQ(engine::ref_tet(engine::face_ref(last, 3)), last);
+  EXPECT_EQ(engine::ref_face(engine::face_ref(last, 3)), 3);
+  EXPECT_THROW(store.allocate(), engine::StoreFull);
+  EXPECT_EQ(store.size(), TetStore::kMaxTets);
+  EXPECT_NE(engine::ref_tet(engine::face_ref(static_cast<engine::TetId>(TetStore::kMaxTets), 0)),
+            TetStore::kMaxTets);  // what the refusal prevents
+}
+
+TEST(StoreLimit, ASequentialRunThatNeedsMoreStopsWithAClearError) {
+  const auto points = generators::generate("uniform", 2000, 1).points;
+  TriangulateOptions options;
+  options.max_tetrahedra = 5000;
+  try {
+    (void)engine::triangulate(points, options);
+    FAIL() << "no error";
+  } catch (const engine::TriangulationError& e) {
+    EXPECT_NE(std::string(e.what()).find("store is full: 5000"), std::string::npos) << e.what();
+  }
+  options.max_tetrahedra = 0;  // the default limit fits
+  EXPECT_TRUE(engine::validate(points, engine::triangulate(points, options).tetrahedra).valid());
+}
+
 }  // namespace
 }  // namespace dtlab::test

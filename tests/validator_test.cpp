@@ -54,6 +54,7 @@ struct Expected {
   std::optional<std::uint64_t> volume_mismatch = 0;
   // Checked where a test states it; expect_valid() requires consistent(), which includes it.
   std::optional<std::uint64_t> reflex_boundary_vertices = std::nullopt;
+  std::optional<std::uint64_t> probes_covered_twice = 0;
 };
 
 #define DTLAB_EXPECT_COUNTER(field)           \
@@ -84,6 +85,9 @@ std::vector<ValidationReport> expect_counts(const Mesh& m, const Expected& e) {
     DTLAB_EXPECT_COUNTER(euler_characteristic);
     DTLAB_EXPECT_COUNTER(volume_mismatch);
     DTLAB_EXPECT_COUNTER(reflex_boundary_vertices);
+    DTLAB_EXPECT_COUNTER(probes_covered_twice);
+    // Probes run exactly where the boundary is not convex.
+    EXPECT_EQ(r.probe_points > 0, r.reflex_boundary_edges > 0 || r.reflex_boundary_vertices > 0);
     reports.push_back(r);
   }
   return reports;
@@ -214,10 +218,15 @@ TEST(ValidatorCounter, InconsistentFaces) {
   // faces there fold over each other).
   m.points.push_back({2, 2, 1});
   m.tets.push_back({0, 1, 2, 5});
-  expect_broken(m, {.inconsistent_faces = 1,
-                    .non_delaunay_faces = std::nullopt,
-                    .reflex_boundary_edges = std::nullopt,
-                    .volume_mismatch = 1});
+  // Where the reflex test fires, the probe points run too, and those of (0, 1, 2, 5) lie in
+  // (0, 1, 2, 4) as well.
+  for (const ValidationReport& r : expect_broken(m, {.inconsistent_faces = 1,
+                                                    .non_delaunay_faces = std::nullopt,
+                                                    .reflex_boundary_edges = std::nullopt,
+                                                    .volume_mismatch = 1,
+                                                    .probes_covered_twice = std::nullopt})) {
+    EXPECT_EQ(r.probes_covered_twice > 0, r.probe_points > 0) << r.kernel;
+  }
 }
 
 TEST(ValidatorCounter, NonDelaunayFaces) {
@@ -335,9 +344,14 @@ TEST(ValidatorCounter, VolumeMismatch) {
   // The surface is not convex at S and N (their links are pentagrams), which the boundary-vertex
   // check counts.
   for (std::uint32_t j = 0; j < 5; ++j) m.tets[j] = {0, 1, 2 + j, 2 + (j + 2) % 5};
-  for (const ValidationReport& r :
-       expect_broken(m, {.volume_mismatch = 1, .reflex_boundary_vertices = 2})) {
+  // The non-convex vertices start the probe count, which finds points near the axis inside two
+  // tetrahedra: the mesh is not even mesh_consistent().
+  for (const ValidationReport& r : expect_broken(m, {.volume_mismatch = 1,
+                                                    .reflex_boundary_vertices = 2,
+                                                    .probes_covered_twice = std::nullopt})) {
     EXPECT_FALSE(r.consistent()) << r.kernel;
+    EXPECT_GT(r.probes_covered_twice, 0u) << r.kernel;
+    EXPECT_FALSE(r.mesh_consistent()) << r.kernel;
   }
 }
 
@@ -345,8 +359,9 @@ TEST(ValidatorCounter, VolumeMismatch) {
 // axis 0-1. Every edge of the boundary is convex, V - E + F - T = 1, and the tetrahedra's volume
 // equals the hull's exactly (68664286 / 3), yet points near the axis lie in two tetrahedra. Only
 // the convexity of the boundary at its vertices (0 and 1, whose links wind twice) sees it: a
-// closed, connected surface that is locally convex at every edge and vertex bounds a convex body.
-// (Found by an independent review of the volume check.)
+// closed, connected surface that is locally convex at every edge and vertex bounds a convex body;
+// the probe count then finds the overlap itself. (Found by an independent review of the volume
+// check.)
 TEST(ValidatorCounter, ReflexBoundaryVerticesWithEqualVolumes) {
   Mesh m{{{-58, 58, -116},
           {58, 58, 116},
@@ -359,11 +374,15 @@ TEST(ValidatorCounter, ReflexBoundaryVerticesWithEqualVolumes) {
           {58, -348, -116}},
          {}};
   for (std::uint32_t j = 0; j < 7; ++j) m.tets.push_back({0, 1, 2 + j, 2 + (j + 2) % 7});
-  for (const ValidationReport& r :
-       expect_counts(m, {.non_delaunay_faces = std::nullopt, .volume_mismatch = 0})) {
+  for (const ValidationReport& r : expect_counts(m, {.non_delaunay_faces = std::nullopt,
+                                                    .volume_mismatch = 0,
+                                                    .probes_covered_twice = std::nullopt})) {
     EXPECT_GT(r.reflex_boundary_vertices, 0u) << r.kernel;
     EXPECT_FALSE(r.consistent()) << r.kernel;
     EXPECT_FALSE(r.valid()) << r.kernel;
+    // The probe points near the axis see the double cover that the volume cannot.
+    EXPECT_GT(r.probes_covered_twice, 0u) << r.kernel;
+    EXPECT_FALSE(r.mesh_consistent()) << r.kernel;
   }
 }
 

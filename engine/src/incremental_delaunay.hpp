@@ -49,7 +49,9 @@ class IncrementalDelaunay {
         mesh_(*owned_),
         options_(options),
         stats_(stats),
-        sync_(&own_sync_) {}
+        sync_(&own_sync_) {
+    if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
+  }
 
   // One inserting thread of a parallel method, on a shared mesh.
   IncrementalDelaunay(SharedMesh& mesh, const TriangulateOptions& options,
@@ -415,13 +417,14 @@ class IncrementalDelaunay {
   // Face ip of live tetrahedron t (the face opposite its vertex `apex`): flips it when the vertex
   // across lies strictly inside t's circumsphere and the flip exists; the new tetrahedra go on
   // stack_. `flips` counts against the per-insertion bound.
-  Flip legalize_face(TetId t, int ip, std::uint64_t& flips) {
+  // With `force`, the face is flipped whether or not it is locally Delaunay (flip_face).
+  Flip legalize_face(TetId t, int ip, std::uint64_t& flips, bool force = false) {
     const Tet& tet = mesh_.tets[t];
     const VertexId apex = tet.vertex[static_cast<std::size_t>(ip)];
     const FaceRef across = tet.neighbor[static_cast<std::size_t>(ip)];
     const TetId t2 = ref_tet(across);
     const VertexId y = mesh_.tets[t2].vertex[static_cast<std::size_t>(ref_face(across))];
-    if (!in_conflict(mesh_.tets[t2], apex)) return Flip::NotApplied;
+    if (!force && !in_conflict(mesh_.tets[t2], apex)) return Flip::NotApplied;
     if (++flips > options_.max_flips_per_insertion) return Flip::Exhausted;
     if (!sync_->acquire(t2)) return Flip::GaveUp;
     // Where does segment apex-y pass face F = t minus apex? o[m] is the orientation of t with
@@ -451,6 +454,26 @@ class IncrementalDelaunay {
   }
 
  public:
+  // Flips face f of live tetrahedron t by S23, S32 or S44/S22, whatever the Delaunay test says,
+  // when the same geometry as in legalization allows a flip: the tests inject non-Delaunay faces
+  // into a Delaunay mesh with it and check that relegalize() removes them. Sequential use only.
+  // Returns the new tetrahedra (empty when no flip exists there).
+  std::vector<TetId> flip_face(TetId t, int f) {
+    const Tet& tet = mesh_.tets[t];
+    if (!tet.alive.load(std::memory_order_acquire)) return {};
+    if (tet.vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
+      const FaceRef across = tet.neighbor[static_cast<std::size_t>(f)];
+      t = ref_tet(across);
+      f = ref_face(across);
+    }
+    std::uint64_t count = 0;
+    stack_.clear();
+    std::vector<TetId> created;
+    if (legalize_face(t, f, count, /*force=*/true) == Flip::Done) created = stack_;
+    stack_.clear();
+    return created;
+  }
+
   // Burglary's sequential post-check: legalizes every face of the live tetrahedra at or below
   // the marked DAG nodes (all live tetrahedra when `everything`) by Lawson flips, following the
   // faces of each new tetrahedron. Lawson flips in 3D can get stuck at a non-flippable face; the

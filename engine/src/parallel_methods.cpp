@@ -5,7 +5,9 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <deque>
+#include <exception>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -168,8 +170,10 @@ void count_outcome(typename Dt::Outcome outcome, ThreadStats& t) {
 
 // Burglary's sequential post-check: the exact validator's count after the parallel run; with
 // --repair, Lawson flips on the marked tetrahedra, then (only if the validator still finds
-// non-Delaunay faces) on every tetrahedron, then (only if flips got stuck, which 3D allows) a
-// sequential rebuild. Each stage's count goes into stats.post_check.
+// non-Delaunay faces) on every tetrahedron. Flips can get stuck in 3D: what they leave is reported
+// (non_delaunay_after_flips), and only Repair::Rebuild then triangulates again sequentially, as an
+// explicit, reported last resort (rebuilt). Each stage's count goes into stats.post_check, and the
+// validator's full verdict on the mesh returned into its *_after fields.
 template <class K>
 std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
                                     const std::vector<TetId>& marks,
@@ -181,28 +185,28 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   check.done = true;
   const std::vector<Point3> input(mesh.points.begin(),
                                   mesh.points.begin() + static_cast<std::ptrdiff_t>(input_count));
+  // With the auxiliary tetrahedron the hull it lost shows as reflex boundary edges in every
+  // method (docs/experiments.md), so only the vertex at infinity counts them as burglary's.
+  const bool hull_counts = options.bounding == Bounding::Infinite;
+  // Validates `tets`, records the verdict as the latest stage's, returns the violations left.
   auto count = [&](const std::vector<Tetrahedron>& tets) {
     const auto t0 = Clock::now();
     const ValidationReport report = validate(input, tets);
     check.seconds_check += std::chrono::duration<double>(Clock::now() - t0).count();
-    return report;
-  };
-  // With the auxiliary tetrahedron the hull it lost shows as reflex boundary edges in every
-  // method (docs/experiments.md), so only the vertex at infinity counts them as burglary's.
-  const bool hull_counts = options.bounding == Bounding::Infinite;
-  auto violations = [&](const std::vector<Tetrahedron>& tets) {
-    const ValidationReport report = count(tets);
-    return report.non_delaunay_faces + (hull_counts ? report.reflex_boundary_edges : 0);
+    check.non_delaunay_faces_after = report.non_delaunay_faces;
+    check.reflex_boundary_edges_after = report.reflex_boundary_edges;
+    check.mesh_consistent_after = report.mesh_consistent();
+    check.non_delaunay_after =
+        report.non_delaunay_faces + (hull_counts ? report.reflex_boundary_edges : 0);
+    return check.non_delaunay_after;
   };
   std::vector<Tetrahedron> tets =
       mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
-  const ValidationReport before = count(tets);
-  check.non_delaunay_faces = before.non_delaunay_faces;
-  check.reflex_boundary_edges = before.reflex_boundary_edges;
-  check.mesh_consistent = before.mesh_consistent();
-  check.non_delaunay_after =
-      before.non_delaunay_faces + (hull_counts ? before.reflex_boundary_edges : 0);
-  if (!options.repair) return tets;
+  count(tets);
+  check.non_delaunay_faces = check.non_delaunay_faces_after;
+  check.reflex_boundary_edges = check.reflex_boundary_edges_after;
+  check.mesh_consistent = check.mesh_consistent_after;
+  if (options.repair == Repair::None) return tets;
 
   check.repaired = true;
   const auto t0 = Clock::now();
@@ -212,21 +216,21 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   IncrementalDelaunay<K, NoSync> dt(mesh, options, repair_stats, no_sync);
   check.repair_flips = dt.relegalize(marks, false);
   tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
-  check.non_delaunay_after_marked = violations(tets);
-  check.non_delaunay_after = check.non_delaunay_after_marked;
-  if (check.non_delaunay_after > 0) {
+  check.non_delaunay_after_marked = count(tets);
+  check.non_delaunay_after_flips = check.non_delaunay_after_marked;
+  if (check.non_delaunay_after_flips > 0) {
     check.sweep_flips = dt.relegalize({}, true);
     tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
-    check.non_delaunay_after = violations(tets);
+    check.non_delaunay_after_flips = count(tets);
   }
-  if (check.non_delaunay_after > 0) {
+  if (check.non_delaunay_after_flips > 0 && options.repair == Repair::Rebuild) {
     check.rebuilt = true;
     TriangulationStats rebuild_stats;
     TriangulateOptions sequential = options;
     sequential.progress = false;
     tets = run_sequential<K>(mesh.points, input_count, full_order, first, skip_first, sequential,
                              rebuild_stats);
-    check.non_delaunay_after = violations(tets);
+    count(tets);
   }
   check.seconds_repair = std::chrono::duration<double>(Clock::now() - t0).count() -
                          (check.seconds_check - check_before);
@@ -262,6 +266,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
                                       TriangulationStats& stats) {
   const int threads = std::max(1, options.threads);
   SharedMesh mesh(points);
+  if (options.max_tetrahedra > 0) mesh.tets.set_capacity(options.max_tetrahedra);
   TriangulationStats start_stats;
   NoSync no_sync;
   IncrementalDelaunay<K, NoSync>(mesh, options, start_stats, no_sync)
@@ -288,6 +293,23 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   const auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
                              : distribute(points, order, options.distribution, threads);
   std::mutex global;  // pessimistic: the one critical section
+  // A stall is a failure; its limit grows with the work (an insertion takes micro- to
+  // milliseconds, so 10 s without one finishing anywhere is no slow run).
+  const double watchdog_limit = options.watchdog_seconds > 0
+                                    ? options.watchdog_seconds
+                                    : 10.0 + 1e-4 * static_cast<double>(order.size());
+
+  // The first exception of any thread (the store's limit, out of memory) stops every thread and
+  // is rethrown after they are joined: an exception must not leave a thread's function.
+  std::mutex error_mutex;
+  std::exception_ptr first_error;
+  auto record_error = [&] {
+    {
+      std::lock_guard<std::mutex> guard(error_mutex);
+      if (!first_error) first_error = std::current_exception();
+    }
+    table.stop.store(true);
+  };
 
   auto finish_thread = [&](int i, const auto& dt) {
     duplicates[static_cast<std::size_t>(i)] = dt.duplicates();
@@ -295,7 +317,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     location_steps[static_cast<std::size_t>(i)] = dt.location_steps();
   };
 
-  auto worker = [&](int i) {
+  auto worker_body = [&](int i) {
     const auto index = static_cast<std::size_t>(i);
     ThreadStats& counters = stats.threads[index];
     WorkSource work(dynamic ? nullptr : &parts[index], dynamic ? &shared_index : nullptr, &order);
@@ -323,8 +345,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       if (table.stop.load(std::memory_order_relaxed)) break;
       const auto outcome = dt.insert(*v);
       count_outcome<decltype(dt)>(outcome, counters);
-      if (outcome == decltype(dt)::Outcome::GaveUp ||
-          outcome == decltype(dt)::Outcome::Unlocated) {
+      if (outcome == decltype(dt)::Outcome::GaveUp || outcome == decltype(dt)::Outcome::Unlocated) {
         const int limit = outcome == decltype(dt)::Outcome::Unlocated
                               ? WorkSource::kMaxLocationAttempts
                               : WorkSource::kMaxLockAttempts;
@@ -344,6 +365,13 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     }
     finish_thread(i, dt);
     suspicious[index] = sync.suspicious();
+  };
+  auto worker = [&](int i) {
+    try {
+      worker_body(i);
+    } catch (...) {
+      record_error();
+    }
   };
 
   auto batch = [&] {
@@ -365,23 +393,27 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     for (int i = 0; i < locators; ++i) {
       pool.emplace_back([&, i] {
         const auto index = static_cast<std::size_t>(i);
-        IncrementalDelaunay<K, NoSync> dt(mesh, options, locator_stats[index], no_sync);
-        WorkSource work(dynamic ? nullptr : &locator_parts[index],
-                        dynamic ? &shared_index : nullptr, &order);
-        while (const auto v = work.next()) {
-          const TetId hint = dt.locate_only(*v);
-          std::unique_lock<std::mutex> lock(queue_mutex);
-          if (queue.size() >= capacity) {
-            full_waits.fetch_add(1, std::memory_order_relaxed);
-            not_full.wait(lock, [&] { return queue.size() < capacity || table.stop.load(); });
+        try {
+          IncrementalDelaunay<K, NoSync> dt(mesh, options, locator_stats[index], no_sync);
+          WorkSource work(dynamic ? nullptr : &locator_parts[index],
+                          dynamic ? &shared_index : nullptr, &order);
+          while (const auto v = work.next()) {
+            const TetId hint = dt.locate_only(*v);
+            std::unique_lock<std::mutex> lock(queue_mutex);
+            if (queue.size() >= capacity) {
+              full_waits.fetch_add(1, std::memory_order_relaxed);
+              not_full.wait(lock, [&] { return queue.size() < capacity || table.stop.load(); });
+            }
+            if (table.stop.load()) break;
+            queue.emplace_back(*v, hint);
+            not_empty.notify_one();
           }
-          if (table.stop.load()) break;
-          queue.emplace_back(*v, hint);
-          not_empty.notify_one();
+        } catch (...) {
+          record_error();
         }
         std::lock_guard<std::mutex> lock(queue_mutex);
         --active_locators;
-        not_empty.notify_one();
+        not_empty.notify_all();
       });
     }
     IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[0], no_sync);
@@ -401,7 +433,12 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
         not_full.notify_one();
       }
       dt.set_location_hint(item.second);
-      count_outcome<decltype(dt)>(dt.insert(item.first), counters);
+      try {
+        count_outcome<decltype(dt)>(dt.insert(item.first), counters);
+      } catch (...) {
+        record_error();
+        break;
+      }
       progress.fetch_add(1, std::memory_order_relaxed);
     }
     {
@@ -416,7 +453,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   };
 
   {
-    Watchdog watchdog(options.watchdog_seconds, progress, table.stop);
+    Watchdog watchdog(watchdog_limit, progress, table.stop);
     if (options.method == Method::Batch) {
       stats.threads.assign(1, ThreadStats{});
       batch();
@@ -425,9 +462,11 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       for (int i = 0; i < threads; ++i) pool.emplace_back(worker, i);
       for (auto& t : pool) t.join();
     }
+    if (first_error) std::rethrow_exception(first_error);
     if (watchdog.fired()) {
-      throw TriangulationError("watchdog: no insertion finished for " +
-                               std::to_string(options.watchdog_seconds) +
+      char limit[32];
+      std::snprintf(limit, sizeof limit, "%.1f", watchdog_limit);
+      throw TriangulationError(std::string("watchdog: no insertion finished for ") + limit +
                                " s; the run was stopped (a deadlock or lost wake-up)");
     }
   }

@@ -208,6 +208,18 @@ const char* to_string(Distribution d) {
   return "?";
 }
 
+const char* to_string(Repair r) {
+  switch (r) {
+    case Repair::None:
+      return "none";
+    case Repair::Flips:
+      return "flips";
+    case Repair::Rebuild:
+      return "rebuild";
+  }
+  return "?";
+}
+
 Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOptions& options) {
   const auto start = Clock::now();
   Triangulation result;
@@ -251,9 +263,17 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
                              "; at least 4 points not in one plane are needed");
   }
 
+  // The store's limit ends the run with the input's size in the message (tet_mesh.hpp).
+  auto run = [&](const std::array<std::uint32_t, 4>& first, bool skip_first) {
+    try {
+      return dispatch(points, input.size(), order, first, skip_first, options, stats);
+    } catch (const StoreFull& e) {
+      throw TriangulationError(std::string(e.what()) + "; " + std::to_string(input.size()) +
+                               " points need more in this run");
+    }
+  };
   if (options.bounding == Bounding::Infinite) {
-    result.tetrahedra =
-        dispatch(points, input.size(), order, *search.simplex, true, options, stats);
+    result.tetrahedra = run(*search.simplex, true);
   } else {
     // The paper's auxiliary tetrahedron: (m,0,0), (0,m,0), (0,0,m), (-m,-m,-m) around the box
     // centre, m = 200 x the box size; removed with every tetrahedron touching it at the end.
@@ -280,8 +300,7 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
             "--bounding infinite");
       }
     }
-    result.tetrahedra =
-        dispatch(points, input.size(), order, {n, n + 1, n + 2, n + 3}, false, options, stats);
+    result.tetrahedra = run({n, n + 1, n + 2, n + 3}, false);
   }
   stats.tetrahedra = result.tetrahedra.size();
   // The post-check's validation is a measurement, not part of the method.
@@ -378,13 +397,18 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
     pc["reflex_boundary_edges"] = c.reflex_boundary_edges;
     pc["mesh_consistent"] = c.mesh_consistent;
     pc["repaired"] = c.repaired;
+    pc["repair"] = to_string(options.repair);
     if (c.repaired) {
       pc["repair_flips"] = c.repair_flips;
       pc["non_delaunay_after_marked"] = c.non_delaunay_after_marked;
       pc["sweep_flips"] = c.sweep_flips;
+      pc["non_delaunay_after_flips"] = c.non_delaunay_after_flips;
       pc["rebuilt"] = c.rebuilt;
       pc["seconds_repair"] = c.seconds_repair;
     }
+    pc["non_delaunay_faces_after"] = c.non_delaunay_faces_after;
+    pc["reflex_boundary_edges_after"] = c.reflex_boundary_edges_after;
+    pc["mesh_consistent_after"] = c.mesh_consistent_after;
     pc["non_delaunay_after"] = c.non_delaunay_after;
     pc["seconds_check"] = c.seconds_check;
     j["post_check"] = pc;

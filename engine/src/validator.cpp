@@ -10,6 +10,7 @@
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "exact_volume.hpp"
+#include "probe_coverage.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -42,6 +43,8 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
            ValidationReport& r) {
   const std::size_t n = pts.size();
   std::vector<bool> usable(tets.size(), true);
+  std::vector<bool> positive(tets.size(), false);  // usable and positively oriented
+  std::vector<char> near_reflex(n, 0);             // a vertex where the boundary is not convex
   for (std::size_t i = 0; i < tets.size(); ++i) {
     const Tetrahedron& t = tets[i];
     bool ok = true;
@@ -56,7 +59,11 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
       usable[i] = false;
       continue;
     }
-    if (K::orient3d(pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]) <= 0) ++r.non_positive_orientation;
+    if (K::orient3d(pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]) <= 0) {
+      ++r.non_positive_orientation;
+    } else {
+      positive[i] = true;
+    }
   }
 
   std::vector<FaceEntry> faces;
@@ -135,7 +142,10 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
       // Outward triples have the interior on their negative side... of the tetrahedron's
       // orientation: orient3d(triple, interior vertex) < 0, so a convex boundary keeps every
       // other boundary vertex at orient3d <= 0.
-      if (K::orient3d(pts[f1[0]], pts[f1[1]], pts[f1[2]], pts[apex]) > 0) ++r.reflex_boundary_edges;
+      if (K::orient3d(pts[f1[0]], pts[f1[1]], pts[f1[2]], pts[apex]) > 0) {
+        ++r.reflex_boundary_edges;
+        near_reflex[edges[i].key[0]] = near_reflex[edges[i].key[1]] = 1;
+      }
     }
     i = j;
   }
@@ -175,7 +185,10 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
         }
       }
     }
-    if (!convex) ++r.reflex_boundary_vertices;
+    if (!convex) {
+      ++r.reflex_boundary_vertices;
+      near_reflex[incidence[i][0]] = 1;
+    }
     i = j;
   }
 
@@ -230,6 +243,14 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
   const ExactGrid grid(pts);
   r.volume_mismatch =
       six_mesh_volume(pts, tets, usable, grid) == six_hull_volume(pts, grid) ? 0 : 1;
+  // Where the boundary is not convex the volumes differ by construction: probe points instead.
+  if (r.reflex_boundary_edges > 0 || r.reflex_boundary_vertices > 0) {
+    constexpr std::size_t kMaxProbes = std::size_t{1} << 16;
+    const detail::ProbeCoverage coverage =
+        detail::probe_coverage<K>(pts, tets, positive, near_reflex, kMaxProbes);
+    r.probe_points = coverage.probes;
+    r.probes_covered_twice = coverage.covered_twice;
+  }
 }
 
 }  // namespace
@@ -242,13 +263,14 @@ bool ValidationReport::consistent() const {
 }
 
 // With a convex boundary the volumes must match. A reflex boundary edge or vertex means the union
-// of the tetrahedra is not the hull, so the volumes differ by construction; that case is left to
-// the local checks (a probe-point count for it is still open, docs/design.md).
+// of the tetrahedra is not the hull, so the volumes differ by construction; there the global check
+// is the probe count: no probe point inside two tetrahedra.
 bool ValidationReport::mesh_consistent() const {
+  const bool convex = reflex_boundary_edges == 0 && reflex_boundary_vertices == 0;
   return invalid_tetrahedra == 0 && non_positive_orientation == 0 && non_manifold_faces == 0 &&
          inconsistent_faces == 0 && open_boundary_edges == 0 && missing_points == 0 &&
          repeated_duplicates == 0 && euler_characteristic == 1 &&
-         (reflex_boundary_edges > 0 || reflex_boundary_vertices > 0 || volume_mismatch == 0);
+         (convex ? volume_mismatch == 0 : probes_covered_twice == 0);
 }
 
 bool ValidationReport::valid() const {
@@ -276,6 +298,8 @@ std::string ValidationReport::json() const {
   j["repeated_duplicates"] = repeated_duplicates;
   j["euler_characteristic"] = euler_characteristic;
   j["volume_mismatch"] = volume_mismatch;
+  j["probe_points"] = probe_points;
+  j["probes_covered_twice"] = probes_covered_twice;
   j["kernel"] = kernel;
   return j.dump(2);
 }

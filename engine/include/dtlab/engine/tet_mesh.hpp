@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace dtlab::engine {
 
@@ -61,12 +62,22 @@ struct Tet {
   }
 };
 
+// The store ran out of slots: the run cannot go on (triangulate reports it as an error).
+class StoreFull : public std::length_error {
+ public:
+  using std::length_error::length_error;
+};
+
 // Append-only storage with stable addresses: a fixed directory of fixed-size blocks.
 class TetStore {
  public:
   static constexpr unsigned kBlockBits = 16;
   static constexpr std::size_t kBlockSize = std::size_t{1} << kBlockBits;
-  static constexpr std::size_t kMaxBlocks = std::size_t{1} << 16;  // 2^32 tetrahedra at most
+  static constexpr std::size_t kMaxBlocks = std::size_t{1} << 14;
+  // A FaceRef is 4 * tet + face in 32 bits, so tetrahedron ids stay below 2^30: the store refuses
+  // the 2^30-th slot (DAG nodes included: about 20M uniform points) instead of wrapping.
+  static constexpr std::size_t kMaxTets = kBlockSize * kMaxBlocks;
+  static_assert(kMaxTets == (std::size_t{1} << 30) && 4 * (kMaxTets - 1) + 3 <= 0xFFFFFFFFu);
 
   TetStore() : blocks_(new std::atomic<Tet*>[kMaxBlocks]) {
     for (std::size_t i = 0; i < kMaxBlocks; ++i)
@@ -90,12 +101,26 @@ class TetStore {
   // slots with the atomic counter).
   TetId allocate() {
     const std::size_t t = size_.fetch_add(1, std::memory_order_relaxed);
-    const std::size_t block = t >> kBlockBits;
-    if (block >= kMaxBlocks || t >= kNoTet) throw std::length_error("tetrahedron store is full");
-    ensure_block(block);
+    if (t >= capacity_) {
+      throw StoreFull("the tetrahedron store is full: " + std::to_string(capacity_) +
+                      " tetrahedra and DAG nodes" +
+                      (capacity_ == kMaxTets ? " (2^30, the limit of 32-bit neighbour references)"
+                                             : " (the capacity asked for)"));
+    }
+    ensure_block(t >> kBlockBits);
     return static_cast<TetId>(t);
   }
-  [[nodiscard]] std::size_t size() const { return size_.load(std::memory_order_relaxed); }
+  // Slots handed out (a refused allocate counted no slot).
+  [[nodiscard]] std::size_t size() const {
+    const std::size_t n = size_.load(std::memory_order_relaxed);
+    return n < capacity_ ? n : capacity_;
+  }
+  [[nodiscard]] std::size_t capacity() const { return capacity_; }
+  // A smaller capacity (a memory cap; tests reach the limit with it). Before the first allocate.
+  void set_capacity(std::size_t tets) { capacity_ = tets < kMaxTets ? tets : kMaxTets; }
+  // Tests only: the next slot is `first` (its block is allocated on demand), to reach the 2^30
+  // boundary without allocating 2^30 slots. Before the first allocate.
+  void skip_to_for_testing(std::size_t first) { size_.store(first, std::memory_order_relaxed); }
 
  private:
   void ensure_block(std::size_t block) {
@@ -109,6 +134,7 @@ class TetStore {
 
   std::unique_ptr<std::atomic<Tet*>[]> blocks_;
   std::atomic<std::size_t> size_{0};
+  std::size_t capacity_ = kMaxTets;
 };
 
 }  // namespace dtlab::engine

@@ -21,12 +21,18 @@ enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent
 enum class Distribution { Static, Dynamic, Strips, Blocks };
 enum class Bounding { Infinite, AuxTet };
 enum class Location { Dag };
+// Burglary's post-check repair (paper Sect. 5): none; Lawson flips on the marked tetrahedra, then
+// on every tetrahedron when faces are left (Flips); or the same, then a sequential rebuild as an
+// explicit last resort when the flips get stuck, which 3D flips can (Rebuild; reported as
+// `rebuilt`, a baseline, not a repair).
+enum class Repair { None, Flips, Rebuild };
 
 const char* to_string(KernelKind k);
 const char* to_string(Bounding b);
 const char* to_string(Location l);
 const char* to_string(Method m);
 const char* to_string(Distribution d);
+const char* to_string(Repair r);
 
 struct TriangulateOptions {
   KernelKind kernel = KernelKind::Adaptive;
@@ -45,10 +51,14 @@ struct TriangulateOptions {
   Distribution distribution = Distribution::Static;
   // Random short delays while locks are held, to shake out races (tests).
   bool stress = false;
-  // A run with no finished insertion for this long is stopped and reported as a failure.
-  double watchdog_seconds = 120.0;
+  // A parallel run with no finished insertion for this long is stopped and reported as a
+  // failure; 0 scales the limit with the work: 10 s + 100 us per point (1,000 points: 10.1 s).
+  double watchdog_seconds = 0.0;
+  // Capacity of the tetrahedron store (DAG nodes included); 0: the limit of 32-bit neighbour
+  // references, 2^30. A run that needs more stops with a TriangulationError.
+  std::uint64_t max_tetrahedra = 0;
   // Burglary: re-legalize the suspicious tetrahedra after the run (the paper's post-check).
-  bool repair = false;
+  Repair repair = Repair::None;
 };
 
 struct FlipCounts {
@@ -92,10 +102,15 @@ struct PostCheck {
   std::uint64_t repair_flips = 0;  // flips on and below the marked tetrahedra
   std::uint64_t non_delaunay_after_marked = 0;  // faces + reflex boundary edges left
   std::uint64_t sweep_flips = 0;  // second pass over every tetrahedron, when marks missed some
+  std::uint64_t non_delaunay_after_flips = 0;  // left when the flips ended (stuck if > 0)
+  bool rebuilt = false;  // Repair::Rebuild only, when flips got stuck: triangulated again
+  // The validator's full verdict on the mesh returned (after the last stage that ran):
+  std::uint64_t non_delaunay_faces_after = 0;
+  std::uint64_t reflex_boundary_edges_after = 0;
+  bool mesh_consistent_after = false;
   std::uint64_t non_delaunay_after = 0;  // final count (faces + reflex boundary edges)
-  bool rebuilt = false;         // flips got stuck (possible in 3D): triangulated again sequentially
-  double seconds_check = 0.0;   // validation (excluded from seconds.total)
-  double seconds_repair = 0.0;  // flips and rebuild (included)
+  double seconds_check = 0.0;            // validation (excluded from seconds.total)
+  double seconds_repair = 0.0;           // flips and rebuild (included)
 };
 
 struct TriangulationStats {

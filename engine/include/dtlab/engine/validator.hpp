@@ -36,7 +36,12 @@ struct ValidationReport {
   // the convex hull of the input points, computed independently of the mesh (CGAL's hull). Equal
   // volumes pin the number of times consistent tetrahedra cover the hull to one.
   std::uint64_t volume_mismatch = 0;  // 1 when the two exact volumes differ
-  std::string kernel;                 // the kernel that decided: "adaptive"
+  // Where the boundary is not convex (reflex edges or vertices) the volumes differ by
+  // construction: probe points strictly inside tetrahedra (near the reflex places, and a sample
+  // elsewhere) are counted exactly instead; one inside two tetrahedra means the mesh overlaps.
+  std::uint64_t probe_points = 0;          // generic probes tested (0: the boundary is convex)
+  std::uint64_t probes_covered_twice = 0;  // probes inside two or more tetrahedra
+  std::string kernel;                      // the kernel that decided: "adaptive"
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
 
