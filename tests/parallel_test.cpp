@@ -1,20 +1,34 @@
 // The parallel methods: one thread gives the sequential mesh; several threads (oversubscribed on
 // purpose, with random delays while locks are held) give a valid mesh on every hard family; the
-// distributions cover every point once. Runs under ThreadSanitizer in scripts/test.sh.
+// distributions cover every point once; the stats count every phase. The lock policy's cycle
+// check and waits are also driven directly, on hand-set lock states. Runs under ThreadSanitizer
+// in scripts/test.sh (every test is in ParallelMethods for that).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
 
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
+#include "dtlab/predicates/kernels.hpp"
+#include "incremental_delaunay.hpp"
+#include "optimistic_sync.hpp"
 #include "parallel_methods.hpp"
 
 namespace dtlab::test {
 namespace {
 
+using engine::Cycle;
 using engine::Distribution;
+using engine::LockTable;
 using engine::Method;
+using engine::OptimisticSync;
+using engine::TetId;
+using engine::ThreadStats;
 using predicates::Point3;
 
 std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
@@ -221,6 +235,185 @@ TEST(ParallelMethods, TheStoreLimitStopsEveryMethodWithAnError) {
           << engine::to_string(m) << ": " << e.what();
     }
   }
+}
+
+// Location outside insert() (pessimistic: the lock-free descent before the critical section;
+// batch: the locating threads) is timed and counted like insert()'s own.
+TEST(ParallelMethods, LocationIsMeasuredForPessimisticAndBatch) {
+  const auto points = generators::generate("uniform", 3000, 1).points;
+  {
+    // locate_only by itself adds to seconds.location and to the predicate calls.
+    engine::TriangulateOptions options;
+    engine::TriangulationStats stats;
+    engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt(points, options, stats);
+    dt.start(0, 1, 2, 3);
+    for (std::uint32_t v = 4; v < 100; ++v) dt.insert(v);
+    const double seconds = stats.seconds.location;
+    const std::uint64_t calls = dt.predicate_calls();
+    dt.locate_only(100);
+    EXPECT_GT(stats.seconds.location, seconds);
+    EXPECT_GT(dt.predicate_calls(), calls);
+  }
+  const auto sequential = engine::triangulate(points, {}).stats;
+  ASSERT_GT(sequential.location_steps, 0u);
+  for (const Method m : {Method::Pessimistic, Method::Batch}) {
+    engine::TriangulateOptions options;
+    options.method = m;
+    options.threads = 2;
+    const auto s = engine::triangulate(points, options).stats;
+    const std::string what = engine::to_string(m);
+    EXPECT_GT(s.seconds.location, 0.0) << what;
+    EXPECT_GT(s.location_steps, 0u) << what;
+    // The DAG depends on how the threads interleave, so the counts are not the sequential run's;
+    // but every point is located once, in a DAG of a random insertion order: same order.
+    EXPECT_GE(2 * s.location_steps, sequential.location_steps) << what;
+    EXPECT_LE(s.location_steps, 2 * sequential.location_steps) << what;
+    EXPECT_GE(2 * s.predicate_calls, sequential.predicate_calls) << what;
+    EXPECT_LE(s.predicate_calls, 2 * sequential.predicate_calls) << what;
+    if (m == Method::Batch) {
+      // With 2 threads batch has one locating thread: the points go in in the sequential order,
+      // into the sequential DAG, and the locating thread's descent plus the inserting thread's
+      // continuation is the sequential descent, step for step (an aborted descent counts no
+      // steps). Without the locating thread's counts only the continuation would be left.
+      EXPECT_EQ(s.location_steps, sequential.location_steps);
+      // The same tests, plus re-tests of the node handed over.
+      EXPECT_GE(s.predicate_calls, sequential.predicate_calls);
+    }
+  }
+}
+
+// A hand-made lock state: tetrahedra in a mesh without points, and a lock table.
+struct LockFixture {
+  LockFixture(int threads, int tets) : mesh(points), table(threads) {
+    for (int i = 0; i < tets; ++i) ids.push_back(mesh.tets.allocate());
+  }
+  void own(TetId t, std::uint32_t thread) {
+    mesh.tets[t].lock_owner.store(thread, std::memory_order_release);
+  }
+  // "thread waits for t, owned by owner", registered as OptimisticSync registers it.
+  void wait(std::uint32_t thread, TetId t, std::uint32_t owner) {
+    std::lock_guard<std::mutex> guard(table.cycle);
+    table.waiting_on[thread] = t;
+    table.waiting_for[thread].store(owner, std::memory_order_release);
+  }
+  Cycle cycle_from(std::uint32_t self) {
+    std::lock_guard<std::mutex> guard(table.cycle);
+    std::vector<std::uint32_t> chain;
+    return engine::find_cycle(mesh, table, self, chain);
+  }
+  std::vector<Point3> points;
+  engine::SharedMesh mesh;
+  LockTable table;
+  std::vector<TetId> ids;
+};
+
+// A chain of registered waits is a deadlock only while every thread on it still waits and every
+// lock waited for is still held by the next thread.
+TEST(ParallelMethods, FindCycleConfirmsOnlyRealCycles) {
+  LockFixture f(3, 3);
+  const TetId a = f.ids[0];
+  const TetId b = f.ids[1];
+  const TetId c = f.ids[2];
+  // 1 holds a and waits for b; 2 holds b and waits for a.
+  f.own(a, 1);
+  f.own(b, 2);
+  f.wait(1, b, 2);
+  f.wait(2, a, 1);
+  EXPECT_EQ(f.cycle_from(1), Cycle::Real);
+  EXPECT_EQ(f.cycle_from(2), Cycle::Real);
+  // 1 has let a go (2 has not retried yet), or 3 has taken it since: 2's registration is stale.
+  f.own(a, 0);
+  EXPECT_EQ(f.cycle_from(1), Cycle::Stale);
+  f.own(a, 3);
+  EXPECT_EQ(f.cycle_from(1), Cycle::Stale);
+  // 2 has withdrawn its wait: no chain back to 1.
+  f.own(a, 1);
+  f.table.waiting_for[2].store(0, std::memory_order_relaxed);
+  EXPECT_EQ(f.cycle_from(1), Cycle::None);
+  // 1 -> 2 -> 3 -> 1 (3 holds c, which 2 waits for; 3 waits for a): real, until c changes hands.
+  f.own(c, 3);
+  f.wait(2, c, 3);
+  f.wait(3, a, 1);
+  EXPECT_EQ(f.cycle_from(1), Cycle::Real);
+  EXPECT_EQ(f.cycle_from(3), Cycle::Real);
+  f.own(c, 0);
+  EXPECT_EQ(f.cycle_from(1), Cycle::Stale);
+  EXPECT_EQ(f.cycle_from(3), Cycle::Stale);
+  // A cycle of 2 and 3 (3 waits for b) that 1 only leads into is not 1's to report.
+  f.own(c, 3);
+  f.wait(3, b, 2);
+  EXPECT_EQ(f.cycle_from(1), Cycle::None);
+  EXPECT_EQ(f.cycle_from(2), Cycle::Real);
+}
+
+TEST(ParallelMethods, DetectGivesUpOnRealDeadlocksOnly) {
+  {
+    // Thread 2 holds b and waits for a; thread 1 takes a, then asks for b: a deadlock.
+    LockFixture f(2, 2);
+    const TetId a = f.ids[0];
+    const TetId b = f.ids[1];
+    ThreadStats stats;
+    OptimisticSync sync(f.mesh, f.table, 1, OptimisticSync::Mode::Detect, stats, false);
+    ASSERT_TRUE(sync.acquire(a));
+    f.own(b, 2);
+    f.wait(2, a, 1);
+    EXPECT_FALSE(sync.acquire(b));
+    EXPECT_EQ(stats.deadlocks, 1u);
+    EXPECT_EQ(stats.stale_cycles, 0u);
+    EXPECT_EQ(f.table.waiting_for[1].load(), 0u);  // withdrawn, so that 2 does not give up too
+    sync.rollback();
+    EXPECT_EQ(f.mesh.tets[a].lock_owner.load(), 0u);
+  }
+  {
+    // Thread 2 registered its wait for a while thread 1 held it; 1 has let a go since, and 2 has
+    // not retried yet. 1 asks for b: the chain 1 -> 2 -> 1 is stale, 1 waits until 2 lets b go.
+    LockFixture f(2, 2);
+    const TetId a = f.ids[0];
+    const TetId b = f.ids[1];
+    f.own(b, 2);
+    f.wait(2, a, 1);
+    ThreadStats stats;
+    OptimisticSync sync(f.mesh, f.table, 1, OptimisticSync::Mode::Detect, stats, false);
+    std::atomic<bool> done{false};
+    std::thread owner([&] {
+      // Let b go once 1's wait is registered and checked (the mutex is free again).
+      while (f.table.waiting_for[1].load(std::memory_order_acquire) == 0 && !done.load()) {
+        std::this_thread::yield();
+      }
+      { std::lock_guard<std::mutex> guard(f.table.cycle); }
+      f.own(b, 0);
+    });
+    const bool got = sync.acquire(b);
+    done = true;
+    owner.join();
+    EXPECT_TRUE(got);
+    EXPECT_EQ(stats.deadlocks, 0u);
+    EXPECT_EQ(stats.stale_cycles, 1u);
+  }
+}
+
+TEST(ParallelMethods, PreventWaitsWhenHoldingNoLock) {
+  LockFixture f(2, 2);
+  const TetId a = f.ids[0];
+  const TetId b = f.ids[1];
+  f.table.priority[2].store(5);
+  f.own(b, 2);
+  ThreadStats stats;
+  OptimisticSync sync(f.mesh, f.table, 1, OptimisticSync::Mode::Prevent, stats, false);
+  // Holding a, thread 1 must not wait for thread 2 (higher priority): it gives up.
+  ASSERT_TRUE(sync.acquire(a));
+  EXPECT_FALSE(sync.acquire(b));
+  EXPECT_EQ(stats.priority_raises, 1u);
+  sync.rollback();
+  // Holding nothing, it waits until 2 lets b go, however late that is (priorities unchanged).
+  std::thread owner([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    f.own(b, 0);
+  });
+  EXPECT_TRUE(sync.acquire(b));
+  owner.join();
+  EXPECT_EQ(stats.priority_raises, 1u);
+  EXPECT_LT(f.table.priority[1].load(), f.table.priority[2].load());
 }
 
 }  // namespace

@@ -32,21 +32,84 @@ struct LockTable {
       : waiting_for(static_cast<std::size_t>(threads) + 1),
         priority(static_cast<std::size_t>(threads) + 1),
         phase(static_cast<std::size_t>(threads) + 1),
-        burgled_in_phase(static_cast<std::size_t>(threads) + 1) {}
+        burgled_in_phase(static_cast<std::size_t>(threads) + 1),
+        waiting_on(static_cast<std::size_t>(threads) + 1, kNoTet) {}
   // waiting_for[i]: the thread that thread i waits for (0: none), or kBurgled | burglar while
   // thread i is a burglary victim. Registered and followed under `cycle` so that the last thread
-  // to close a cycle always sees it (no false negatives); burglary changes it by compare-and-swap
-  // only, so that "stopped waiting" and "burgled" cannot both win.
+  // to close a cycle always sees it (no false negatives); withdrawn (0) without the mutex, so a
+  // chain read under it may be stale (find_cycle re-checks it); burglary changes it by
+  // compare-and-swap only, so that "stopped waiting" and "burgled" cannot both win. Every nonzero
+  // value is written under `cycle`.
   std::vector<std::atomic<std::uint32_t>> waiting_for;
   std::vector<std::atomic<std::uint64_t>> priority;  // prevent: higher wins
   // Burglary: phase[i] counts the insertions (or parts of one) thread i has ended; a victim waits
   // until its burglar's phase moves past burgled_in_phase[victim].
   std::vector<std::atomic<std::uint64_t>> phase;
   std::vector<std::atomic<std::uint64_t>> burgled_in_phase;
+  // waiting_on[i]: the tetrahedron of thread i's registered wait. Written and read under `cycle`
+  // only, so a plain value.
+  std::vector<TetId> waiting_on;
   static constexpr std::uint32_t kBurgled = 0x8000'0000U;
   std::mutex cycle;
   std::atomic<bool> stop{false};  // watchdog: give everything up
 };
+
+// What the registered waits from a thread lead to: no cycle back to it, a closed chain of
+// registrations that no longer holds (a wait withdrawn, or a lock that changed hands, since it
+// was registered), or a real deadlock.
+enum class Cycle { None, Stale, Real };
+
+// Follows the registered waits from `self` (whose wait is registered); the caller holds
+// table.cycle. `chain` is scratch space.
+//
+// Why Real is a real deadlock. Registrations need the mutex, so while the caller holds it every
+// other thread's waiting_for can only drop to 0 (withdrawn). The chain self = T0 -> T1 -> ... ->
+// Tk -> T0 is read first (loads A), then for each edge the owner of the tetrahedron Ti waits on
+// (loads B: owner Ti+1), then every waiting_for again (loads C: unchanged). A waiting thread takes
+// no lock but the one it waits for, releases none, and withdraws (a store sequenced after its
+// winning compare-and-swap and before any release). If Ti+1's compare-and-swap read by B came
+// after its withdrawal, the withdrawal would happen before B (release/acquire on the lock word)
+// and so before C, which could not read the registration. If it was the one that ended Ti+1's
+// wait (Ti+1 waited for the same tetrahedron), edge i+1 needs a later owner of it, which again
+// comes after the withdrawal. So Ti+1 took that lock before its registered wait and holds it
+// until after its withdrawal; then Ti can get it only after Ti+1 has withdrawn (its release,
+// acquire by Ti), and around the cycle every withdrawal would have to happen before itself: none
+// of T0..Tk can ever get its lock unless one of them gives up. Stale chains (A alone would have
+// counted them) come back as Stale. Burglary takes a victim's locks only after marking it
+// burgled under the mutex, which ends a chain at the victim.
+//
+// Why a deadlock is never missed. Take the threads of a deadlock and, of their last registrations
+// (each thread registers on every new owner it sees), the one made last under the mutex. Every
+// other registration, and every lock a waiting thread holds (taken before its wait began), happens
+// before that critical section, and none of them changes afterwards: all three passes of the
+// thread that made it see the cycle, and it gives up (detect) or burgles (burglary).
+inline Cycle find_cycle(const SharedMesh& mesh, const LockTable& table, std::uint32_t self,
+                        std::vector<std::uint32_t>& chain) {
+  chain.clear();
+  for (std::uint32_t current = self;;) {
+    chain.push_back(current);
+    const std::uint32_t next = table.waiting_for[current].load(std::memory_order_acquire);
+    if (next == 0 || (next & LockTable::kBurgled) != 0) return Cycle::None;
+    if (next == self) break;
+    if (chain.size() == table.waiting_for.size()) return Cycle::None;  // a cycle without self
+    current = next;
+  }
+  const auto successor = [&](std::size_t i) { return i + 1 < chain.size() ? chain[i + 1] : self; };
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    const TetId t = table.waiting_on[chain[i]];
+    // acquire: synchronizes with the owner's compare-and-swap (release), so that a withdrawal
+    // sequenced before it is seen by the loads C below. (A and C need no order of their own.)
+    if (t == kNoTet || mesh.tets[t].lock_owner.load(std::memory_order_acquire) != successor(i)) {
+      return Cycle::Stale;
+    }
+  }
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    if (table.waiting_for[chain[i]].load(std::memory_order_acquire) != successor(i)) {
+      return Cycle::Stale;
+    }
+  }
+  return Cycle::Real;
+}
 
 class OptimisticSync {
  public:
@@ -102,7 +165,12 @@ class OptimisticSync {
         ++stats_.waits;
       }
       if (mode_ == Mode::Prevent) {
-        // Never wait for a thread of higher priority (ties: the lower id wins).
+        // Never wait for a thread of higher priority (ties: the lower id wins) while holding a
+        // lock. Holding none, nobody waits for this thread, so its wait closes no cycle: it waits.
+        if (held_.empty()) {
+          if (spin > 64) std::this_thread::yield();
+          continue;
+        }
         const std::uint64_t mine = table_.priority[self_].load(std::memory_order_relaxed);
         const std::uint64_t theirs = table_.priority[owner].load(std::memory_order_relaxed);
         if (theirs > mine || (theirs == mine && owner < self_)) {
@@ -114,7 +182,7 @@ class OptimisticSync {
       } else if (owner != registered_owner) {
         // (Re-)register only when the owner changes: whoever closes a cycle later sees it.
         registered_owner = owner;
-        const Wait wait = register_wait(owner);
+        const Wait wait = register_wait(owner, t);
         if (wait == Wait::Deadlock) {
           ++stats_.deadlocks;
           return false;  // register_wait already withdrew the wait
@@ -262,46 +330,41 @@ class OptimisticSync {
     return (table_.waiting_for[self_].load(std::memory_order_acquire) & LockTable::kBurgled) != 0;
   }
 
-  // Registers "self waits for owner" and follows the chain of waits; a chain that comes back to
-  // self is a deadlock. Under the mutex, registration and check are one step, so of the threads
-  // that close a cycle the last one sees it. Detect: self gives up. Burglary: self breaks into
-  // `owner`, which is parked in acquire() and writes nothing until this insertion ends.
-  Wait register_wait(std::uint32_t owner) {
+  // Registers "self waits for owner, for t" and checks for a cycle (find_cycle). Under the mutex,
+  // registration and check are one step, so of the threads that close a cycle the last one sees
+  // it. Detect: self gives up. Burglary: self breaks into `owner`, which is parked in acquire()
+  // and writes nothing until this insertion ends. A stale chain is only counted: self waits on,
+  // and registers again when t's owner changes.
+  Wait register_wait(std::uint32_t owner, TetId t) {
     std::lock_guard<std::mutex> guard(table_.cycle);
     std::atomic<std::uint32_t>& status = table_.waiting_for[self_];
     if ((status.load(std::memory_order_acquire) & LockTable::kBurgled) != 0) return Wait::Burgled;
+    table_.waiting_on[self_] = t;
     status.store(owner, std::memory_order_release);
-    std::uint32_t current = owner;
-    for (std::size_t steps = 0; steps < table_.waiting_for.size(); ++steps) {
-      const std::uint32_t next = table_.waiting_for[current].load(std::memory_order_acquire);
-      if (next == 0 || (next & LockTable::kBurgled) != 0) return Wait::Waiting;
-      if (next != self_) {
-        current = next;
-        continue;
-      }
-      if (mode_ != Mode::Burglary) {
-        // Withdraw inside the critical section, so that the partner does not see this wait and
-        // give up too (both giving up could repeat forever).
-        status.store(0, std::memory_order_relaxed);
-        return Wait::Deadlock;
-      }
-      // The owner may have just got its lock and be withdrawing its wait: the compare-and-swap
-      // decides, and a running owner is never burgled.
-      std::uint32_t expected = table_.waiting_for[owner].load(std::memory_order_acquire);
-      if (expected == 0 || (expected & LockTable::kBurgled) != 0) return Wait::Waiting;
-      table_.burgled_in_phase[owner].store(table_.phase[self_].load(std::memory_order_relaxed),
-                                           std::memory_order_relaxed);
-      if (!table_.waiting_for[owner].compare_exchange_strong(expected, LockTable::kBurgled | self_,
-                                                             std::memory_order_acq_rel,
-                                                             std::memory_order_acquire)) {
-        return Wait::Waiting;
-      }
-      status.store(0, std::memory_order_release);
-      ++stats_.deadlocks;
-      ++stats_.burglaries;
-      return Wait::Burgling;
+    const Cycle cycle = find_cycle(mesh_, table_, self_, chain_);
+    if (cycle == Cycle::Stale) ++stats_.stale_cycles;
+    if (cycle != Cycle::Real) return Wait::Waiting;
+    if (mode_ != Mode::Burglary) {
+      // Withdraw inside the critical section, so that the partner does not see this wait and
+      // give up too (both giving up could repeat forever).
+      status.store(0, std::memory_order_relaxed);
+      return Wait::Deadlock;
     }
-    return Wait::Waiting;
+    // `owner` cannot get its lock now (find_cycle), but it may still withdraw on the watchdog's
+    // stop: the compare-and-swap decides, and a running owner is never burgled.
+    std::uint32_t expected = table_.waiting_for[owner].load(std::memory_order_acquire);
+    if (expected == 0 || (expected & LockTable::kBurgled) != 0) return Wait::Waiting;
+    table_.burgled_in_phase[owner].store(table_.phase[self_].load(std::memory_order_relaxed),
+                                         std::memory_order_relaxed);
+    if (!table_.waiting_for[owner].compare_exchange_strong(expected, LockTable::kBurgled | self_,
+                                                           std::memory_order_acq_rel,
+                                                           std::memory_order_acquire)) {
+      return Wait::Waiting;
+    }
+    status.store(0, std::memory_order_release);
+    ++stats_.deadlocks;
+    ++stats_.burglaries;
+    return Wait::Burgling;
   }
 
   void end_phase() {
@@ -350,8 +413,9 @@ class OptimisticSync {
   std::vector<TetId> held_;
   std::vector<TetId> created_;
   std::vector<Saved> log_;
-  std::vector<TetId> own_kills_;   // burglary: created tetrahedra this thread itself replaced
-  std::vector<TetId> suspicious_;  // burglary: marks for the post-check
+  std::vector<TetId> own_kills_;      // burglary: created tetrahedra this thread itself replaced
+  std::vector<TetId> suspicious_;     // burglary: marks for the post-check
+  std::vector<std::uint32_t> chain_;  // find_cycle's scratch
 };
 
 }  // namespace dtlab::engine

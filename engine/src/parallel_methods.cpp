@@ -325,7 +325,8 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[index], no_sync);
       while (const auto v = work.next()) {
         if (table.stop.load(std::memory_order_relaxed)) break;
-        // Lock-free descent; the leaf-level part, subdivision and legalization in one section.
+        // Lock-free descent (timed and counted as location); the leaf-level part, subdivision
+        // and legalization in one section. Waiting for the section is in no phase.
         dt.set_location_hint(dt.locate_only(*v));
         std::lock_guard<std::mutex> guard(global);
         count_outcome<decltype(dt)>(dt.insert(*v), counters);
@@ -411,6 +412,9 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
         } catch (...) {
           record_error();
         }
+        // Merged into the run's stats after the join (the descent's seconds are already there).
+        locator_stats[index].predicate_calls = dt.predicate_calls();
+        locator_stats[index].location_steps = dt.location_steps();
         std::lock_guard<std::mutex> lock(queue_mutex);
         --active_locators;
         not_empty.notify_all();
@@ -449,7 +453,13 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     finish_thread(0, dt);
     stats.queue_full_waits = full_waits.load();
     stats.queue_empty_waits = empty_waits;
-    for (const auto& ls : locator_stats) thread_stats[0].seconds.location += ls.seconds.location;
+    // The locating threads' descents are the batch method's location: their seconds (summed, like
+    // every phase), predicate calls and steps join the inserting thread's.
+    for (const auto& ls : locator_stats) {
+      thread_stats[0].seconds.location += ls.seconds.location;
+      predicate_calls[0] += ls.predicate_calls;
+      location_steps[0] += ls.location_steps;
+    }
   };
 
   {

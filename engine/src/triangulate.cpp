@@ -352,12 +352,13 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   j["peak_rss_bytes"] = s.peak_rss_bytes;
   j["scale_exponent"] = s.scale_exponent;
   if (!s.threads.empty()) {
-    std::uint64_t waits = 0, deadlocks = 0, give_ups = 0, raises = 0, burglaries = 0, burgled = 0,
-                  problems = 0, suspicious = 0;
+    std::uint64_t waits = 0, deadlocks = 0, stale = 0, give_ups = 0, raises = 0, burglaries = 0,
+                  burgled = 0, problems = 0, suspicious = 0;
     nlohmann::ordered_json per_thread = nlohmann::ordered_json::array();
     for (const ThreadStats& t : s.threads) {
       waits += t.waits;
       deadlocks += t.deadlocks;
+      stale += t.stale_cycles;
       give_ups += t.give_ups;
       raises += t.priority_raises;
       burglaries += t.burglaries;
@@ -369,6 +370,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                             {"abandoned", t.abandoned},
                             {"waits", t.waits},
                             {"deadlocks", t.deadlocks},
+                            {"stale_cycles", t.stale_cycles},
                             {"give_ups", t.give_ups},
                             {"priority_raises", t.priority_raises},
                             {"burglaries", t.burglaries},
@@ -378,6 +380,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
     }
     j["waits"] = waits;
     j["deadlocks"] = deadlocks;
+    j["stale_cycles"] = stale;
     j["give_ups"] = give_ups;
     j["priority_raises"] = raises;
     j["burglaries"] = burglaries;

@@ -83,6 +83,7 @@ struct ThreadStats {
   std::uint64_t abandoned = 0;
   std::uint64_t waits = 0;            // lock requests that found the lock taken and waited
   std::uint64_t deadlocks = 0;        // waits that would have closed a cycle (detect)
+  std::uint64_t stale_cycles = 0;     // closed wait chains that no longer held: not deadlocks
   std::uint64_t give_ups = 0;         // insertions undone and retried
   std::uint64_t priority_raises = 0;  // prevent
   std::uint64_t burglaries = 0;       // burglary: deadlocks broken by picking the partner's locks
