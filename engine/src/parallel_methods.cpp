@@ -409,12 +409,12 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
             queue.emplace_back(*v, hint);
             not_empty.notify_one();
           }
+          // Merged into the run's stats after the join (the descent's seconds are already there).
+          locator_stats[index].predicate_calls = dt.predicate_calls();
+          locator_stats[index].location_steps = dt.location_steps();
         } catch (...) {
           record_error();
         }
-        // Merged into the run's stats after the join (the descent's seconds are already there).
-        locator_stats[index].predicate_calls = dt.predicate_calls();
-        locator_stats[index].location_steps = dt.location_steps();
         std::lock_guard<std::mutex> lock(queue_mutex);
         --active_locators;
         not_empty.notify_all();
