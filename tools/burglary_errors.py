@@ -21,7 +21,7 @@ import subprocess
 
 def run(dtlab, spec, threads, seed, stress):
     cmd = [dtlab, "triangulate", spec, "--method", "burglary", "--threads", str(threads),
-           "--repair", "--seed", str(seed), "--stats", "-"]
+           "--repair=rebuild", "--seed", str(seed), "--stats", "-"]
     if stress:
         cmd.append("--stress")
     return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
@@ -115,7 +115,7 @@ def main():
                      sweeps, rebuilds, len(rows),
                      "yes" if all(c["mesh_consistent"] for c in pc) else "NO"))
             if any(c["non_delaunay_after"] != 0 for c in pc):
-                raise SystemExit("a --repair run did not end Delaunay")
+                raise SystemExit("a --repair=rebuild run did not end Delaunay")
     if args.plot:
         plot(plot_rows, families, thread_counts, args.plot,
              "burglary, %d points, median of %d seeds, %d CPUs"

@@ -2,7 +2,8 @@
 # Issue 3's correctness gate, as a sweep: every lock method at 1, 2, 4 and 8 threads (oversubscribed
 # on small machines, on purpose) on every generator family and on the real models, adaptive kernel,
 # validated exactly. Every method but burglary must be valid; burglary must be mesh-consistent
-# after the run and valid after --repair. Prints one line per failure and a summary; exit 1 on any.
+# after the run and valid after --repair=rebuild (flips, then the reported rebuild where they got
+# stuck; the stats say which). Prints one line per failure and a summary; exit 1 on any.
 # Usage: tools/method_gate.sh [N-per-family (5000)] [MAX-MODEL-POINTS (45000)] [SEED (1)]
 set -uo pipefail
 dtlab="${DTLAB:-build/release/cli/dtlab}"
@@ -28,7 +29,7 @@ for input in "${inputs[@]}"; do
       runs=$((runs + 1))
       if [ "$method" = burglary ]; then
         json=$("$dtlab" triangulate "$input" --seed "$seed" --method "$method" --threads "$threads" \
-          --repair --validate --stats - 2>"$err")
+          --repair=rebuild --validate --stats - 2>"$err")
         ok=$(python3 -c 'import json,sys; d=json.load(sys.stdin); print(int(d["post_check"]["mesh_consistent"] and d["validation"]["valid"] and d["abandoned_insertions"]==0))' <<<"$json" 2>/dev/null)
       else
         json=$("$dtlab" triangulate "$input" --seed "$seed" --method "$method" --threads "$threads" \
