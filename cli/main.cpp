@@ -67,14 +67,13 @@ int main(int argc, char** argv) {
                   "static | dynamic | strips | blocks")
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
   tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
-  const std::map<std::string, dtlab::engine::Repair> repairs{
-      {"flips", dtlab::engine::Repair::Flips}, {"rebuild", dtlab::engine::Repair::Rebuild}};
-  tri->add_flag("--repair{flips}", targs.options.repair,
+  std::string repair = "none";
+  tri->add_flag("--repair{flips}", repair,
                 "burglary: re-legalize the suspicious tetrahedra after the run (post-check) by "
                 "Lawson flips on the marks, then on every face; 3D flips can get stuck, and what "
                 "they leave is reported. --repair=rebuild then triangulates again sequentially "
                 "(an explicit, reported last resort)")
-      ->transform(CLI::CheckedTransformer(repairs, CLI::ignore_case));
+      ->check(CLI::IsMember({"flips", "rebuild"}));
   std::string location = "dag";
   tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
@@ -128,6 +127,9 @@ int main(int argc, char** argv) {
     if (*info) return dtlab::cli::run_info(input, seed);
     if (*tri) {
       targs.options.progress = isatty(STDERR_FILENO) != 0;
+      targs.options.repair = repair == "flips"     ? dtlab::engine::Repair::Flips
+                             : repair == "rebuild" ? dtlab::engine::Repair::Rebuild
+                                                   : dtlab::engine::Repair::None;
       return dtlab::cli::run_triangulate(targs);
     }
     if (*validate) return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel);
