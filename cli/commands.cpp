@@ -3,9 +3,12 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "dtlab/engine/point_set_info.hpp"
+#include "dtlab/engine/repair.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/mesh_writers.hpp"
@@ -77,9 +80,12 @@ int run_triangulate(const TriangulateArgs& args) {
   if (args.options.method == engine::Method::Sequential && args.threads != 1) {
     throw std::invalid_argument("the sequential method runs on one thread (--threads 1)");
   }
-  if (args.options.repair != engine::Repair::None &&
+  if ((args.options.repair == engine::Repair::Flips ||
+       args.options.repair == engine::Repair::Rebuild) &&
       args.options.method != engine::Method::Burglary) {
-    throw std::invalid_argument("--repair is the burglary method's post-check (--method burglary)");
+    throw std::invalid_argument(
+        "--repair=flips and --repair=rebuild are the burglary method's post-check (--method "
+        "burglary); --repair (star splaying) works with every method");
   }
   if (args.threads < 1 || args.threads > 1024) {
     throw std::invalid_argument("--threads must be in [1, 1024]");
@@ -184,13 +190,26 @@ int run_triangulate(const TriangulateArgs& args) {
             static_cast<unsigned long long>(c.non_delaunay_after));
       }
       std::printf("\n");
-      if (c.repaired && c.non_delaunay_after > 0) {
+      if (c.repaired && c.non_delaunay_after > 0 && args.options.repair != engine::Repair::Splay) {
         std::fprintf(stderr,
                      "dtlab: warning: the repair flips got stuck with %llu non-Delaunay faces "
                      "and reflex boundary edges left; --repair=rebuild triangulates again as a "
                      "last resort\n",
                      static_cast<unsigned long long>(c.non_delaunay_after));
       }
+    }
+    if (s.splay.done) {
+      const engine::SplayStats& r = s.splay;
+      std::printf(
+          "  repair (star splaying): %llu non-Delaunay faces, %llu bad tetrahedra and %llu "
+          "missing vertices found; %llu seeds, %llu stars splayed, %llu tetrahedra replaced by "
+          "%llu in %.3f s\n",
+          static_cast<unsigned long long>(r.non_delaunay_faces),
+          static_cast<unsigned long long>(r.bad_tetrahedra),
+          static_cast<unsigned long long>(r.missing_vertices),
+          static_cast<unsigned long long>(r.seeds), static_cast<unsigned long long>(r.stars),
+          static_cast<unsigned long long>(r.tetrahedra_removed),
+          static_cast<unsigned long long>(r.tetrahedra_created), r.seconds);
     }
     if (s.hull_tetrahedra_lost >= 0) {
       std::printf("  aux-tet: %lld tetrahedra of the exact convex hull triangulation lost\n",
@@ -218,6 +237,56 @@ int run_validate(const std::string& points_path, const std::string& mesh,
   const engine::ValidationReport report = engine::validate(points, tets, kernel);
   std::cout << report.json() << "\n";
   return report.valid() ? 0 : 1;
+}
+
+int run_repair(const std::string& points_path, const std::string& mesh, const std::string& output,
+               const std::string& stats_path, bool validate) {
+  if (!output.empty() && !ends_with(output, ".ele") && !ends_with(output, ".vtu")) {
+    throw std::invalid_argument(output + ": output must end in .ele or .vtu");
+  }
+  const auto points = io::read_points(points_path);
+  const auto tets = io::read_ele(mesh, points.size(), io::node_index_base(points_path));
+  engine::SplayStats stats;
+  const auto repaired = engine::repair(points, tets, stats);
+  std::optional<engine::ValidationReport> report;
+  if (validate) report = engine::validate(points, repaired, engine::ValidateWith::Adaptive);
+  if (!output.empty()) {
+    if (ends_with(output, ".ele")) {
+      io::write_node(output.substr(0, output.size() - 4) + ".node", points);
+      io::write_ele(output, repaired);
+    } else {
+      io::write_vtu(output, points, repaired, {});
+    }
+  }
+  nlohmann::ordered_json j;
+  j["points"] = points.size();
+  j["tetrahedra_in"] = tets.size();
+  j["tetrahedra_out"] = repaired.size();
+  j["missing_vertices"] = stats.missing_vertices;
+  j["stars"] = stats.stars;
+  j["offers"] = stats.offers;
+  j["changes"] = stats.changes;
+  j["seconds"] = stats.seconds;
+  if (report) j["validation_valid"] = report->valid();
+  if (stats_path == "-") {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    if (!stats_path.empty()) {
+      std::ofstream out(stats_path);
+      if (!out) throw std::runtime_error(stats_path + ": cannot open for writing");
+      out << j.dump(2) << "\n";
+    }
+    std::printf(
+        "repaired %zu tetrahedra on %zu points into the Delaunay tetrahedralization: %zu "
+        "tetrahedra; %llu stars splayed, %llu points no tetrahedron used, %.3f s\n",
+        tets.size(), points.size(), repaired.size(), static_cast<unsigned long long>(stats.stars),
+        static_cast<unsigned long long>(stats.missing_vertices), stats.seconds);
+    if (report) {
+      std::printf("  validation (adaptive predicates): %s\n",
+                  report->valid() ? "VALID" : "INVALID");
+    }
+  }
+  return report && !report->valid() ? 1 : 0;
 }
 
 int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel) {

@@ -68,12 +68,14 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
   tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
   std::string repair = "none";
-  tri->add_flag("--repair{flips}", repair,
-                "burglary: re-legalize the suspicious tetrahedra after the run (post-check) by "
-                "Lawson flips on the marks, then on every face; 3D flips can get stuck, and what "
-                "they leave is reported. --repair=rebuild then triangulates again sequentially "
-                "(an explicit, reported last resort)")
-      ->check(CLI::IsMember({"flips", "rebuild"}));
+  tri->add_flag("--repair{splay}", repair,
+                "repair the mesh after the run by star splaying, exact, from every non-Delaunay "
+                "face (and burglary's marks): always ends in the Delaunay tetrahedralization, any "
+                "method and kernel. Burglary also has the paper's post-check: --repair=flips "
+                "(Lawson flips on the marks, then on every face; they can get stuck, and what "
+                "they leave is reported) and --repair=rebuild (the same, then a sequential "
+                "rebuild as an explicit, reported last resort)")
+      ->check(CLI::IsMember({"splay", "flips", "rebuild"}));
   std::string location = "dag";
   tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
@@ -91,7 +93,7 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
   tri->add_option("--watchdog", targs.options.watchdog_seconds,
                   "parallel methods: stop and fail a run in which no insertion finished for this "
-                  "many seconds (default 0: 10 s + 100 us per point)")
+                  "many seconds (default 0: 10 s + 100 us per point, at most 60 s)")
       ->check(CLI::NonNegativeNumber);
   tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
                   "flip bound per insertion (abandon beyond)");
@@ -106,6 +108,19 @@ int main(int argc, char** argv) {
       ->add_option("--validate-with", validate_kernel,
                    "the validator's kernel: adaptive (default) | exact (GMP, independent)")
       ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
+
+  std::string repair_output;
+  std::string repair_stats;
+  bool repair_validate = false;
+  auto* repair_cmd = app.add_subcommand(
+      "repair",
+      "the Delaunay tetrahedralization of POINTS from any tetrahedra on them (MESH, .ele), by "
+      "star splaying with exact predicates");
+  repair_cmd->add_option("POINTS", points_path, "the points (.node, .xyz, ...)")->required();
+  repair_cmd->add_option("MESH", mesh_path, "the tetrahedra (.ele): any, even wrong")->required();
+  repair_cmd->add_option("-o,--output", repair_output, "the repaired mesh (.ele or .vtu)");
+  repair_cmd->add_option("--stats", repair_stats, "write stats JSON to FILE, or - for stdout");
+  repair_cmd->add_flag("--validate", repair_validate, "check the result with the exact validator");
 
   KernelKind audit_kernel = KernelKind::Adaptive;
   auto* audit =
@@ -127,12 +142,17 @@ int main(int argc, char** argv) {
     if (*info) return dtlab::cli::run_info(input, seed);
     if (*tri) {
       targs.options.progress = isatty(STDERR_FILENO) != 0;
-      targs.options.repair = repair == "flips"     ? dtlab::engine::Repair::Flips
+      targs.options.repair = repair == "splay"     ? dtlab::engine::Repair::Splay
+                             : repair == "flips"   ? dtlab::engine::Repair::Flips
                              : repair == "rebuild" ? dtlab::engine::Repair::Rebuild
                                                    : dtlab::engine::Repair::None;
       return dtlab::cli::run_triangulate(targs);
     }
     if (*validate) return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel);
+    if (*repair_cmd) {
+      return dtlab::cli::run_repair(points_path, mesh_path, repair_output, repair_stats,
+                                    repair_validate);
+    }
     if (*audit) return dtlab::cli::run_predicates_audit(input, seed, audit_kernel);
   } catch (const dtlab::io::InputError& e) {
     std::fprintf(stderr, "dtlab: error: %s\n", e.what());

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cgal_reference.hpp"
+#include "dtlab/engine/repair.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/generators/generators.hpp"
 
@@ -108,6 +109,48 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
       "refused by dtlab): %zu\n",
       compared, refused.size());
   for (const auto& r : refused) std::printf("  refused: %s\n", r.c_str());
+  EXPECT_GT(compared, 0);
+}
+
+// Star splaying (issue 12) against CGAL after each of its three uses, on every family with a
+// tetrahedralization: burglary then --repair (2 and 4 threads, random delays while locks are
+// held), the fast kernel then --repair, and dtlab repair (engine::repair) from the fast kernel's
+// mesh and from nothing.
+TEST(CgalOracle, EveryFamilyRepairedIdenticalTetrahedra) {
+  int compared = 0;
+  for (const std::string& family : generators::families()) {
+    const auto pts = generators::generate(family, 1500, 7).points;
+    if (cgal_dimension(pts) < 3) continue;
+    const auto cgal = cgal_delaunay(pts);
+    for (const int threads : {2, 4}) {
+      engine::TriangulateOptions burglary;
+      burglary.method = engine::Method::Burglary;
+      burglary.threads = threads;
+      burglary.stress = true;
+      burglary.repair = engine::Repair::Splay;
+      EXPECT_TRUE(same_tetrahedra(engine::triangulate(pts, burglary).tetrahedra, cgal))
+          << family << " burglary " << threads << " + repair";
+    }
+    engine::TriangulateOptions fast;
+    fast.kernel = engine::KernelKind::Fast;
+    std::vector<io::Tetrahedron> fast_mesh;
+    try {
+      fast_mesh = engine::triangulate(pts, fast).tetrahedra;
+      fast.repair = engine::Repair::Splay;
+      EXPECT_TRUE(same_tetrahedra(engine::triangulate(pts, fast).tetrahedra, cgal))
+          << family << " fast + repair";
+    } catch (const engine::TriangulationError& e) {
+      // The fast kernel's own refusal (a first tetrahedron it sees as flat) leaves no mesh.
+      EXPECT_NE(std::string(e.what()).find("flat under this kernel"), std::string::npos)
+          << e.what();
+    }
+    engine::SplayStats stats;
+    EXPECT_TRUE(same_tetrahedra(engine::repair(pts, fast_mesh, stats), cgal))
+        << family << " dtlab repair of the fast kernel's mesh";
+    EXPECT_TRUE(same_tetrahedra(engine::repair(pts, {}, stats), cgal))
+        << family << " dtlab repair from no tetrahedra";
+    ++compared;
+  }
   EXPECT_GT(compared, 0);
 }
 

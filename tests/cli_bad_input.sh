@@ -30,8 +30,8 @@ expect 2 "collinear" -- triangulate "collinear:1000"
 expect 2 "must end in" -- triangulate "uniform:100" -o "$dir/out.txt"
 expect 2 "" -- triangulate "uniform:100" --predicates nosuch
 expect 2 "" -- predicates-audit "uniform:100" --predicates nosuch
-expect 2 "not in {flips,rebuild}" -- triangulate "uniform:100" --method burglary --repair=bogus
-expect 2 "post-check" -- triangulate "uniform:100" --repair
+expect 2 "not in {splay,flips,rebuild}" -- triangulate "uniform:100" --method burglary --repair=bogus
+expect 2 "post-check" -- triangulate "uniform:100" --repair=flips
 expect 2 "" -- triangulate "uniform:100" --watchdog -1
 if ls "$dir"/out.* >/dev/null 2>&1; then echo "FAIL: an output file was left behind"; failures=$((failures + 1)); fi
 echo "cli_bad_input: $failures failures"

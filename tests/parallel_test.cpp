@@ -82,21 +82,24 @@ TEST(ParallelMethods, ManyThreadsStayValidOnHardFamilies) {
 
 // Burglary may lose the Delaunay property, never the mesh: after the run the mesh is sound (the
 // post-check's validation says so, and the test validates again). The repair's flips are judged
-// by themselves, without the rebuild: on uniform and grid data, where the burglary table of
-// docs/experiments.md shows they always suffice, they must give the unique Delaunay
-// tetrahedralization; elsewhere what they leave is reported exactly. Repair::Rebuild triangulates
-// again exactly when the flips left faces, and says so.
+// by themselves, without the rebuild: on grid data, where they never got stuck (0 of 9 runs of
+// the burglary table in docs/experiments.md, 0 of 110 runs of grid:1500 at 2 and 4 threads with
+// --stress), they must give the unique Delaunay tetrahedralization; elsewhere (uniform got stuck
+// in 2 of 30 such runs) what they leave is reported exactly. Star splaying (Repair::Splay) always
+// ends Delaunay.
 TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   const int n = 1500;
   std::uint64_t burglaries = 0;
+  std::uint64_t damaged = 0;       // non-Delaunay faces the flips had to repair (grid)
+  std::uint64_t repair_flips = 0;  // and the flips they made
   for (const std::string family :
        {"uniform", "grid", "sphere", "cospherical", "near-duplicates", "duplicates", "planes"}) {
     const auto points = generators::generate(family, n, 5).points;
     const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
-    const bool flips_suffice = family == "uniform" || family == "grid";
+    const bool flips_suffice = family == "grid";
     for (const int threads : {2, 4}) {
-      for (const auto repair :
-           {engine::Repair::None, engine::Repair::Flips, engine::Repair::Rebuild}) {
+      for (const auto repair : {engine::Repair::None, engine::Repair::Flips,
+                                engine::Repair::Rebuild, engine::Repair::Splay}) {
         engine::TriangulateOptions options;
         options.method = Method::Burglary;
         options.threads = threads;
@@ -123,18 +126,31 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
             EXPECT_EQ(check.non_delaunay_faces, report.non_delaunay_faces) << what;
             break;
           case engine::Repair::Flips:
-            EXPECT_FALSE(check.rebuilt) << what;
-            EXPECT_EQ(check.non_delaunay_after, check.non_delaunay_after_flips) << what;
+            EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
             if (flips_suffice) {
               EXPECT_EQ(check.non_delaunay_after_flips, 0u) << what;
+              damaged += check.non_delaunay_faces;
+              repair_flips += check.repair_flips;
             }
             // Delaunay means the unique (perturbed) Delaunay tetrahedralization.
             if (check.non_delaunay_after == 0) {
               EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
             }
             break;
+          case engine::Repair::Splay:
+            // Star splaying always ends in the Delaunay mesh, without a rebuild.
+            EXPECT_TRUE(result.stats.splay.done) << what;
+            EXPECT_FALSE(check.rebuilt) << what;
+            EXPECT_TRUE(report.valid()) << what << report.json();
+            EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+            break;
           case engine::Repair::Rebuild:
-            EXPECT_EQ(check.rebuilt, check.non_delaunay_after_flips > 0) << what;
+            EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
+            if (flips_suffice) {
+              EXPECT_FALSE(check.rebuilt) << what;
+              damaged += check.non_delaunay_faces;
+              repair_flips += check.repair_flips;
+            }
             EXPECT_TRUE(report.valid()) << what << report.json();
             EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
             break;
@@ -143,8 +159,11 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
       }
     }
   }
-  // Oversubscribed threads with delays while locks are held: deadlocks do happen.
+  // Oversubscribed threads with delays while locks are held: deadlocks do happen, and the flips
+  // on grid data had something to repair (a run leaves faces about 3 times in 4).
   EXPECT_GT(burglaries, 0u);
+  EXPECT_GT(damaged, 0u);
+  EXPECT_GT(repair_flips, 0u);
 }
 
 // The fast kernel contradicts itself on inexact near-degenerate input. Its insertions whose

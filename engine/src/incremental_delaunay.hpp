@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "conflict.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/predicates/perturbation.hpp"
@@ -155,6 +156,7 @@ class IncrementalDelaunay {
   std::vector<Tetrahedron> finite_tetrahedra(VertexId vertex_limit) const {
     return mesh_.finite_tetrahedra(vertex_limit, duplicates_);
   }
+  SharedMesh& mesh() { return mesh_; }
   [[nodiscard]] const std::vector<std::pair<VertexId, VertexId>>& duplicates() const {
     return duplicates_;
   }
@@ -184,8 +186,6 @@ class IncrementalDelaunay {
   [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
 
  private:
-  using Quad = std::array<VertexId, 4>;
-
   // Only finite vertices are looked up: the infinite vertex never reaches a point lookup.
   const Point3& point(VertexId v) const { return mesh_.points[v]; }
 
@@ -210,21 +210,10 @@ class IncrementalDelaunay {
     return orient(q);
   }
 
-  // Whether p lies strictly inside the (perturbed) circumsphere of t.
+  // Whether p lies strictly inside the (perturbed) circumsphere of t (conflict.hpp).
   bool in_conflict(const Tet& t, VertexId p) {
     ++predicate_calls_;
-    const int inf = t.index_of(kInfiniteVertex);
-    const auto& v = t.vertex;
-    if (inf < 0) {
-      return predicates::insphere_perturbed<K>(point(v[0]), point(v[1]), point(v[2]), point(v[3]),
-                                               point(p)) > 0;
-    }
-    // kFaceVertex lists the face with the opposite (infinite) vertex on its negative side;
-    // reversed, the infinite vertex lies on the positive side, as the predicate expects.
-    const auto& f = kFaceVertex[static_cast<std::size_t>(inf)];
-    return predicates::infinite_insphere_perturbed<K>(
-               point(v[static_cast<std::size_t>(f[0])]), point(v[static_cast<std::size_t>(f[2])]),
-               point(v[static_cast<std::size_t>(f[1])]), point(p)) > 0;
+    return engine::in_conflict<K>(mesh_.points, t.vertex, p);
   }
 
   // p inside or on the boundary of t; `o` receives the four orientations.

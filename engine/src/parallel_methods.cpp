@@ -18,6 +18,7 @@
 #include "dtlab/predicates/kernels.hpp"
 #include "incremental_delaunay.hpp"
 #include "optimistic_sync.hpp"
+#include "splay_repair.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -211,6 +212,14 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   check.repaired = true;
   const auto t0 = Clock::now();
   const double check_before = check.seconds_check;
+  if (options.repair == Repair::Splay) {
+    // Star splaying from the marks and every non-Delaunay face: always ends Delaunay.
+    splay_shared_mesh(mesh, marks, stats.splay);
+    tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+    count(tets);
+    check.seconds_repair = stats.splay.seconds;
+    return tets;
+  }
   TriangulationStats repair_stats;
   NoSync no_sync;
   IncrementalDelaunay<K, NoSync> dt(mesh, options, repair_stats, no_sync);
@@ -223,6 +232,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
     tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
     check.non_delaunay_after_flips = count(tets);
   }
+  check.mesh_consistent_after_flips = check.mesh_consistent_after;
   if (check.non_delaunay_after_flips > 0 && options.repair == Repair::Rebuild) {
     check.rebuilt = true;
     TriangulationStats rebuild_stats;
@@ -293,11 +303,12 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   const auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
                              : distribute(points, order, options.distribution, threads);
   std::mutex global;  // pessimistic: the one critical section
-  // A stall is a failure; its limit grows with the work (an insertion takes micro- to
-  // milliseconds, so 10 s without one finishing anywhere is no slow run).
-  const double watchdog_limit = options.watchdog_seconds > 0
-                                    ? options.watchdog_seconds
-                                    : 10.0 + 1e-4 * static_cast<double>(order.size());
+  // A stall is a failure; its limit grows with the work, to a minute at most (an insertion takes
+  // micro- to milliseconds, so 10 s without one finishing anywhere is no slow run).
+  const double watchdog_limit =
+      options.watchdog_seconds > 0
+          ? options.watchdog_seconds
+          : std::min(60.0, 10.0 + 1e-4 * static_cast<double>(order.size()));
 
   // The first exception of any thread (the store's limit, out of memory) stops every thread and
   // is rethrown after they are joined: an exception must not leave a thread's function.
@@ -500,6 +511,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     return post_check<K>(mesh, input_count, marks, full_order, first, skip_first, all_duplicates,
                          options, stats);
   }
+  if (options.repair == Repair::Splay) splay_shared_mesh(mesh, {}, stats.splay);
   return mesh.finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
 }
 

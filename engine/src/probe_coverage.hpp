@@ -16,8 +16,9 @@
 namespace dtlab::engine::detail {
 
 struct ProbeCoverage {
-  std::uint64_t probes = 0;         // generic probes tested (on no other tetrahedron's boundary)
-  std::uint64_t covered_twice = 0;  // probes inside two or more tetrahedra
+  std::uint64_t probes = 0;         // probes tested
+  std::uint64_t covered_twice = 0;  // probes inside (or on) a second tetrahedron
+  bool complete = true;             // false: the work budget ran out (long thin tetrahedra)
 };
 
 // The barycentric weights of the probes made from one tetrahedron: the centroid, and points
@@ -62,12 +63,12 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
     Point3 at;
     std::uint32_t source;
     std::uint32_t count = 1;  // the source tetrahedron
-    bool generic = true;
   };
   std::vector<Probe> probes;
   auto add_probes = [&](std::size_t i, bool all) {
     const io::Tetrahedron& t = tets[i];
     for (const auto& w : probe_weights(all)) {
+      if (probes.size() >= max_probes) return;
       // Weights are powers of two or their sums: each product is exact unless it underflows; the
       // sum rounds, and the exact test below keeps only probes strictly inside their source.
       auto mix = [&](auto coordinate) {
@@ -94,8 +95,9 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
     }
   }
   const std::size_t room = max_probes > probes.size() ? max_probes - probes.size() : 0;
+  // Rounded up, so that the sample spreads over every index range of the mesh.
   const std::size_t stride =
-      room == 0 ? tets.size() + 1 : std::max<std::size_t>(1, tets.size() / room);
+      room == 0 ? tets.size() + 1 : std::max<std::size_t>(1, (tets.size() + room - 1) / room);
   for (std::size_t i = 0; i < tets.size() && probes.size() < max_probes; i += stride) {
     if (usable[i] && taken[i] == 0) add_probes(i, false);
   }
@@ -135,8 +137,12 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
   for (const std::uint32_t p : order) ++first[static_cast<std::size_t>(cell_id(probes[p].at)) + 1];
   for (std::size_t c = 1; c < first.size(); ++c) first[c] += first[c - 1];
 
-  for (std::size_t i = 0; i < tets.size(); ++i) {
-    if (!usable[i]) continue;
+  // Cell visits and exact tests are bounded: long thin tetrahedra (fans on sphere data) cross
+  // many cells. Past the budget the count stops and says it is incomplete.
+  const std::uint64_t budget = std::uint64_t{1} << 28;
+  std::uint64_t work = 0;
+  // Tests tetrahedron i against the probes in its box; false when the budget ran out.
+  auto scan = [&](std::size_t i) {
     const io::Tetrahedron& t = tets[i];
     Point3 tlo = pts[t[0]];
     Point3 thi = pts[t[0]];
@@ -145,34 +151,36 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
       tlo = {std::min(tlo.x, p.x), std::min(tlo.y, p.y), std::min(tlo.z, p.z)};
       thi = {std::max(thi.x, p.x), std::max(thi.y, p.y), std::max(thi.z, p.z)};
     }
+    const Point3 &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]], &d = pts[t[3]];
     for (int cx = cell(tlo.x, 0); cx <= cell(thi.x, 0); ++cx) {
       for (int cy = cell(tlo.y, 1); cy <= cell(thi.y, 1); ++cy) {
         for (int cz = cell(tlo.z, 2); cz <= cell(thi.z, 2); ++cz) {
-          const auto c = static_cast<std::size_t>((cx * g + cy) * g + cz);
-          for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+          const auto id = static_cast<std::size_t>((cx * g + cy) * g + cz);
+          if (++work > budget) return false;
+          for (std::uint32_t k = first[id]; k < first[id + 1]; ++k) {
             Probe& probe = probes[order[k]];
             const Point3& q = probe.at;
             if (probe.source == i || q.x < tlo.x || q.x > thi.x || q.y < tlo.y || q.y > thi.y ||
                 q.z < tlo.z || q.z > thi.z) {
               continue;
             }
-            const Point3 &a = pts[t[0]], &b = pts[t[1]], &cc = pts[t[2]], &d = pts[t[3]];
-            const std::array<int, 4> o{K::orient3d(q, b, cc, d), K::orient3d(a, q, cc, d),
-                                       K::orient3d(a, b, q, d), K::orient3d(a, b, cc, q)};
-            if (*std::min_element(o.begin(), o.end()) < 0) continue;
-            if (*std::max_element(o.begin(), o.end()) > 0 &&
-                std::find(o.begin(), o.end(), 0) == o.end()) {
+            if (++work > budget) return false;
+            // The probe is strictly inside its source; inside or on the boundary of this
+            // full-dimensional tetrahedron too, the two interiors overlap.
+            if (K::orient3d(q, b, c, d) >= 0 && K::orient3d(a, q, c, d) >= 0 &&
+                K::orient3d(a, b, q, d) >= 0 && K::orient3d(a, b, c, q) >= 0) {
               ++probe.count;
-            } else {
-              probe.generic = false;  // on this tetrahedron's boundary: not a generic probe
             }
           }
         }
       }
     }
+    return true;
+  };
+  for (std::size_t i = 0; i < tets.size() && result.complete; ++i) {
+    if (usable[i]) result.complete = scan(i);
   }
   for (const Probe& p : probes) {
-    if (!p.generic) continue;
     ++result.probes;
     if (p.count >= 2) ++result.covered_twice;
   }

@@ -17,6 +17,7 @@
 #include "dtlab/predicates/kernels.hpp"
 #include "incremental_delaunay.hpp"
 #include "parallel_methods.hpp"
+#include "splay_repair.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -93,6 +94,7 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   stats.dag_nodes = dt.dag_nodes();
   stats.predicate_calls = dt.predicate_calls();
   stats.location_steps = dt.location_steps();
+  if (options.repair == Repair::Splay) splay_shared_mesh(dt.mesh(), {}, stats.splay);
   return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
@@ -216,6 +218,8 @@ const char* to_string(Repair r) {
       return "flips";
     case Repair::Rebuild:
       return "rebuild";
+    case Repair::Splay:
+      return "splay";
   }
   return "?";
 }
@@ -406,6 +410,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
       pc["non_delaunay_after_marked"] = c.non_delaunay_after_marked;
       pc["sweep_flips"] = c.sweep_flips;
       pc["non_delaunay_after_flips"] = c.non_delaunay_after_flips;
+      pc["mesh_consistent_after_flips"] = c.mesh_consistent_after_flips;
       pc["rebuilt"] = c.rebuilt;
       pc["seconds_repair"] = c.seconds_repair;
     }
@@ -416,6 +421,21 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
     pc["seconds_check"] = c.seconds_check;
     j["post_check"] = pc;
   }
+  if (s.splay.done) {
+    const SplayStats& r = s.splay;
+    j["splay"] = {{"non_delaunay_faces", r.non_delaunay_faces},
+                  {"bad_tetrahedra", r.bad_tetrahedra},
+                  {"missing_vertices", r.missing_vertices},
+                  {"seeds", r.seeds},
+                  {"stars", r.stars},
+                  {"offers", r.offers},
+                  {"changes", r.changes},
+                  {"regrown", r.regrown},
+                  {"tetrahedra_removed", r.tetrahedra_removed},
+                  {"tetrahedra_created", r.tetrahedra_created},
+                  {"seconds", r.seconds}};
+  }
+  j["repair"] = to_string(options.repair);
   j["method"] = method;
   j["threads"] = threads;
   j["distribution"] = to_string(options.distribution);

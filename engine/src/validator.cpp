@@ -241,8 +241,12 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
   // Global: positively oriented, locally consistent tetrahedra with a closed boundary cover the
   // hull a constant number of times; equal exact volumes pin that number to one.
   const ExactGrid grid(pts);
-  r.volume_mismatch =
-      six_mesh_volume(pts, tets, usable, grid) == six_hull_volume(pts, grid) ? 0 : 1;
+  const auto mesh_volume = six_mesh_volume(pts, tets, usable, grid);
+  const auto hull_volume = six_hull_volume(pts, grid);
+  r.volume_mismatch = mesh_volume == hull_volume ? 0 : 1;
+  // Tetrahedra on input points that do not overlap fill at most the hull: more is an exact proof
+  // of overlap, whatever the boundary.
+  r.volume_excess = mesh_volume > hull_volume ? 1 : 0;
   // Where the boundary is not convex the volumes differ by construction: probe points instead.
   if (r.reflex_boundary_edges > 0 || r.reflex_boundary_vertices > 0) {
     constexpr std::size_t kMaxProbes = std::size_t{1} << 16;
@@ -250,6 +254,7 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
         detail::probe_coverage<K>(pts, tets, positive, near_reflex, kMaxProbes);
     r.probe_points = coverage.probes;
     r.probes_covered_twice = coverage.covered_twice;
+    r.probe_check_complete = coverage.complete;
   }
 }
 
@@ -269,7 +274,7 @@ bool ValidationReport::mesh_consistent() const {
   const bool convex = reflex_boundary_edges == 0 && reflex_boundary_vertices == 0;
   return invalid_tetrahedra == 0 && non_positive_orientation == 0 && non_manifold_faces == 0 &&
          inconsistent_faces == 0 && open_boundary_edges == 0 && missing_points == 0 &&
-         repeated_duplicates == 0 && euler_characteristic == 1 &&
+         repeated_duplicates == 0 && euler_characteristic == 1 && volume_excess == 0 &&
          (convex ? volume_mismatch == 0 : probes_covered_twice == 0);
 }
 
@@ -298,7 +303,9 @@ std::string ValidationReport::json() const {
   j["repeated_duplicates"] = repeated_duplicates;
   j["euler_characteristic"] = euler_characteristic;
   j["volume_mismatch"] = volume_mismatch;
+  j["volume_excess"] = volume_excess;
   j["probe_points"] = probe_points;
+  j["probe_check_complete"] = probe_check_complete;
   j["probes_covered_twice"] = probes_covered_twice;
   j["kernel"] = kernel;
   return j.dump(2);

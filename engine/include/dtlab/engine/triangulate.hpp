@@ -21,11 +21,13 @@ enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent
 enum class Distribution { Static, Dynamic, Strips, Blocks };
 enum class Bounding { Infinite, AuxTet };
 enum class Location { Dag };
-// Burglary's post-check repair (paper Sect. 5): none; Lawson flips on the marked tetrahedra, then
-// on every tetrahedron when faces are left (Flips); or the same, then a sequential rebuild as an
-// explicit last resort when the flips get stuck, which 3D flips can (Rebuild; reported as
-// `rebuilt`, a baseline, not a repair).
-enum class Repair { None, Flips, Rebuild };
+// The repair after a run: none; star splaying from the marked tetrahedra and every non-Delaunay
+// face or bad tetrahedron, exact, for any method and kernel (Splay: --repair, always ends in the
+// Delaunay tetrahedralization, no rebuild); burglary's post-check as the paper has it, Lawson flips
+// on the marked tetrahedra, then on every tetrahedron when faces are left (Flips), which can get
+// stuck in 3D; or the same, then a sequential rebuild as an explicit last resort (Rebuild;
+// reported as `rebuilt`, a baseline, not a repair).
+enum class Repair { None, Flips, Rebuild, Splay };
 
 const char* to_string(KernelKind k);
 const char* to_string(Bounding b);
@@ -52,12 +54,12 @@ struct TriangulateOptions {
   // Random short delays while locks are held, to shake out races (tests).
   bool stress = false;
   // A parallel run with no finished insertion for this long is stopped and reported as a
-  // failure; 0 scales the limit with the work: 10 s + 100 us per point (1,000 points: 10.1 s).
+  // failure; 0 scales the limit with the work: 10 s + 100 us per point, at most 60 s.
   double watchdog_seconds = 0.0;
   // Capacity of the tetrahedron store (DAG nodes included); 0: the limit of 32-bit neighbour
   // references, 2^30. A run that needs more stops with a TriangulationError.
   std::uint64_t max_tetrahedra = 0;
-  // Burglary: re-legalize the suspicious tetrahedra after the run (the paper's post-check).
+  // The repair after the run (Flips and Rebuild: burglary only).
   Repair repair = Repair::None;
 };
 
@@ -104,6 +106,7 @@ struct PostCheck {
   std::uint64_t non_delaunay_after_marked = 0;  // faces + reflex boundary edges left
   std::uint64_t sweep_flips = 0;  // second pass over every tetrahedron, when marks missed some
   std::uint64_t non_delaunay_after_flips = 0;  // left when the flips ended (stuck if > 0)
+  bool mesh_consistent_after_flips = false;    // the flips kept the mesh sound
   bool rebuilt = false;  // Repair::Rebuild only, when flips got stuck: triangulated again
   // The validator's full verdict on the mesh returned (after the last stage that ran):
   std::uint64_t non_delaunay_faces_after = 0;
@@ -112,6 +115,22 @@ struct PostCheck {
   std::uint64_t non_delaunay_after = 0;  // final count (faces + reflex boundary edges)
   double seconds_check = 0.0;            // validation (excluded from seconds.total)
   double seconds_repair = 0.0;           // flips and rebuild (included)
+};
+
+// Star splaying (--repair; dtlab repair): the local repair into the Delaunay tetrahedralization.
+struct SplayStats {
+  bool done = false;
+  std::uint64_t non_delaunay_faces = 0;  // found by the exact scan before splaying
+  std::uint64_t bad_tetrahedra = 0;      // flat or inverted finite tetrahedra found by the scan
+  std::uint64_t missing_vertices = 0;    // points that were no vertex (abandoned insertions)
+  std::uint64_t seeds = 0;               // vertices splayed from the start
+  std::uint64_t stars = 0;               // stars built: the seeds and the vertices they reached
+  std::uint64_t offers = 0;              // vertices offered to stars
+  std::uint64_t changes = 0;             // offers that changed a star
+  std::uint64_t regrown = 0;  // rounds that splayed more vertices where a broken mesh did not fit
+  std::uint64_t tetrahedra_removed = 0;
+  std::uint64_t tetrahedra_created = 0;
+  double seconds = 0.0;  // scan, splaying and writing back (included in seconds.total)
 };
 
 struct TriangulationStats {
@@ -132,6 +151,7 @@ struct TriangulationStats {
   std::uint64_t queue_full_waits = 0;   // batch: locating threads blocked on a full queue
   std::uint64_t queue_empty_waits = 0;  // batch: the inserting thread found the queue empty
   PostCheck post_check;                 // burglary
+  SplayStats splay;                     // --repair (star splaying)
 };
 
 struct Triangulation {

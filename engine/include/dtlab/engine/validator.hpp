@@ -39,16 +39,20 @@ struct ValidationReport {
   // Where the boundary is not convex (reflex edges or vertices) the volumes differ by
   // construction: probe points strictly inside tetrahedra (near the reflex places, and a sample
   // elsewhere) are counted exactly instead; one inside two tetrahedra means the mesh overlaps.
-  std::uint64_t probe_points = 0;          // generic probes tested (0: the boundary is convex)
-  std::uint64_t probes_covered_twice = 0;  // probes inside two or more tetrahedra
-  std::string kernel;                      // the kernel that decided: "adaptive"
+  std::uint64_t volume_excess = 0;  // 1 when the tetrahedra's volume exceeds the hull's (overlap)
+  std::uint64_t probe_points = 0;   // probes tested (0: the boundary is convex)
+  std::uint64_t probes_covered_twice = 0;  // probes inside (or on) a second tetrahedron
+  bool probe_check_complete = true;        // false: its work budget (2^28 steps) ran out
+  std::string kernel;                      // the kernel that decided: "adaptive" or "exact" (GMP)
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
 
   [[nodiscard]] bool consistent() const;  // everything but the Delaunay property
-  // A sound mesh whose boundary may be non-convex: everything but the Delaunay property and
-  // reflex boundary edges. With the vertex at infinity, a reflex boundary edge is a non-Delaunay
-  // face of an infinite tetrahedron (burglary can leave one; docs/design.md).
+  // A sound mesh whose boundary may be non-convex: everything but the Delaunay property and the
+  // convexity of the boundary (reflex edges and vertices), with the global check that fits the
+  // boundary: equal volumes where it is convex, no probe covered twice where it is not, and never
+  // more volume than the hull. With the vertex at infinity, a reflex boundary edge is a
+  // non-Delaunay face of an infinite tetrahedron (burglary can leave one; docs/design.md).
   [[nodiscard]] bool mesh_consistent() const;
   [[nodiscard]] bool valid() const;  // consistent and Delaunay
   [[nodiscard]] std::string json() const;

@@ -1,0 +1,34 @@
+#pragma once
+// The one conflict test of insertion, legalization and star splaying: whether point p lies
+// strictly inside the (perturbed) circumsphere of the positively oriented tetrahedron q, the
+// vertex at infinity included. A point conflicts with the infinite tetrahedron (a, b, c, inf) iff
+// it lies beyond the plane abc, or on it and inside the circle abc (incremental_delaunay.hpp).
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "dtlab/engine/tet_mesh.hpp"
+#include "dtlab/predicates/perturbation.hpp"
+#include "dtlab/predicates/point.hpp"
+
+namespace dtlab::engine {
+
+using Quad = std::array<VertexId, 4>;
+
+template <class K>
+bool in_conflict(const std::vector<predicates::Point3>& points, const Quad& q, VertexId p) {
+  int inf = 3;
+  while (inf >= 0 && q[static_cast<std::size_t>(inf)] != kInfiniteVertex) --inf;
+  if (inf < 0) {
+    return predicates::insphere_perturbed<K>(points[q[0]], points[q[1]], points[q[2]], points[q[3]],
+                                             points[p]) > 0;
+  }
+  // kFaceVertex lists the face with the opposite (infinite) vertex on its negative side;
+  // reversed, the infinite vertex lies on the positive side, as the predicate expects.
+  const auto& f = kFaceVertex[static_cast<std::size_t>(inf)];
+  return predicates::infinite_insphere_perturbed<K>(
+             points[q[static_cast<std::size_t>(f[0])]], points[q[static_cast<std::size_t>(f[2])]],
+             points[q[static_cast<std::size_t>(f[1])]], points[p]) > 0;
+}
+
+}  // namespace dtlab::engine

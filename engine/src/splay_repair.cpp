@@ -1,0 +1,493 @@
+#include "splay_repair.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "dtlab/engine/point_set_info.hpp"
+#include "dtlab/engine/repair.hpp"
+#include "dtlab/predicates/kernels.hpp"
+#include "star_splaying.hpp"
+
+namespace dtlab::engine {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Exact = predicates::AdaptiveKernel;
+
+// Vertices near a point, for the star of a point that no tetrahedron uses: a uniform grid over
+// the vertices; the shells around the point's cell are scanned until at least 8 vertices were
+// seen, then one shell more. (Nearness only helps the first star; correctness comes from the
+// consistency enforcement.)
+class NearGrid {
+ public:
+  NearGrid(const std::vector<Point3>& points, const std::vector<VertexId>& vertices)
+      : points_(points) {
+    if (vertices.empty()) return;
+    lo_ = hi_ = points[vertices[0]];
+    for (const VertexId v : vertices) {
+      const Point3& p = points[v];
+      lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
+      hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y), std::max(hi_.z, p.z)};
+    }
+    cells_ =
+        std::clamp(static_cast<int>(std::cbrt(static_cast<double>(vertices.size()) / 2)), 1, 256);
+    first_.assign(static_cast<std::size_t>(cells_) * cells_ * cells_ + 1, 0);
+    for (const VertexId v : vertices) ++first_[cell_id(cell(points[v])) + 1];
+    std::partial_sum(first_.begin(), first_.end(), first_.begin());
+    members_.resize(vertices.size());
+    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
+    for (const VertexId v : vertices) members_[fill[cell_id(cell(points[v]))]++] = v;
+  }
+
+  void near(VertexId x, std::vector<VertexId>& out) const {
+    if (members_.empty()) return;
+    const std::array<int, 3> c = cell(points_[x]);
+    for (int r = 0; r < cells_; ++r) {
+      const std::size_t before = out.size();
+      for (int i = c[0] - r; i <= c[0] + r; ++i) {
+        for (int j = c[1] - r; j <= c[1] + r; ++j) {
+          for (int k = c[2] - r; k <= c[2] + r; ++k) {
+            if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r)
+              continue;
+            if (i < 0 || j < 0 || k < 0 || i >= cells_ || j >= cells_ || k >= cells_) continue;
+            const std::size_t id = cell_id({i, j, k});
+            for (std::uint32_t m = first_[id]; m < first_[id + 1]; ++m) out.push_back(members_[m]);
+          }
+        }
+      }
+      if (before >= 8) return;  // this shell was the one more after reaching 8
+    }
+  }
+
+ private:
+  [[nodiscard]] std::array<int, 3> cell(const Point3& p) const {
+    auto axis = [&](double x, double l, double h) {
+      const double span = h - l;
+      if (!(span > 0) || !std::isfinite(span)) return 0;
+      const double t = (x - l) / span * cells_;
+      return t <= 0 ? 0 : t >= cells_ ? cells_ - 1 : static_cast<int>(t);
+    };
+    return {axis(p.x, lo_.x, hi_.x), axis(p.y, lo_.y, hi_.y), axis(p.z, lo_.z, hi_.z)};
+  }
+  [[nodiscard]] std::size_t cell_id(const std::array<int, 3>& c) const {
+    return (static_cast<std::size_t>(c[0]) * static_cast<std::size_t>(cells_) +
+            static_cast<std::size_t>(c[1])) *
+               static_cast<std::size_t>(cells_) +
+           static_cast<std::size_t>(c[2]);
+  }
+
+  const std::vector<Point3>& points_;
+  Point3 lo_{};
+  Point3 hi_{};
+  int cells_ = 1;
+  std::vector<std::uint32_t> first_;
+  std::vector<VertexId> members_;
+};
+
+// canonical[x]: the one index that stands for all the points equal to point x in the result:
+// the lowest index among those that `is_vertex` (the engine keeps whichever duplicate it met
+// first), else the lowest index.
+template <class IsVertex>
+std::vector<VertexId> canonical_points(const std::vector<Point3>& points, IsVertex is_vertex) {
+  std::vector<VertexId> order(points.size());
+  std::iota(order.begin(), order.end(), 0U);
+  std::sort(order.begin(), order.end(), [&](VertexId a, VertexId b) {
+    return predicates::lexicographically_less(points[a], points[b]) ||
+           (points[a] == points[b] && a < b);
+  });
+  std::vector<VertexId> canonical(points.size());
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i;
+    VertexId chosen = order[i];
+    bool found = false;
+    for (; j < order.size() && points[order[j]] == points[order[i]]; ++j) {
+      if (!found && is_vertex(order[j])) {
+        chosen = order[j];
+        found = true;
+      }
+    }
+    for (std::size_t k = i; k < j; ++k) canonical[order[k]] = chosen;
+    i = j;
+  }
+  return canonical;
+}
+
+// Four affinely independent vertices of `vertices`.
+std::array<VertexId, 4> pool_of(const std::vector<Point3>& points,
+                                const std::vector<VertexId>& vertices) {
+  const SimplexSearch s = find_simplex(points, vertices);
+  if (!s.simplex) throw std::invalid_argument("star splaying: the points do not span 3D");
+  return *s.simplex;
+}
+
+// The shared mesh as MeshStars: every live tetrahedron at each vertex, from an incidence list
+// (not a walk over neighbours: a broken mesh's star need not be connected through its faces).
+class SharedMeshStars : public MeshStars {
+ public:
+  explicit SharedMeshStars(const SharedMesh& mesh)
+      : mesh_(mesh), first_(mesh.points.size() + 1, 0) {
+    const std::size_t n = mesh.tets.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Tet& t = mesh.tets[static_cast<TetId>(i)];
+      if (!t.alive.load(std::memory_order_acquire)) continue;
+      for (const VertexId v : t.vertex) {
+        if (v != kInfiniteVertex) ++first_[v + 1];
+      }
+    }
+    std::partial_sum(first_.begin(), first_.end(), first_.begin());
+    of_.resize(first_.back());
+    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Tet& t = mesh.tets[static_cast<TetId>(i)];
+      if (!t.alive.load(std::memory_order_acquire)) continue;
+      for (const VertexId v : t.vertex) {
+        if (v != kInfiniteVertex) of_[fill[v]++] = static_cast<TetId>(i);
+      }
+    }
+  }
+  void tetrahedra_of(VertexId x, std::vector<Quad>& out) const override {
+    out.clear();
+    for (std::uint32_t i = first_[x]; i < first_[x + 1]; ++i)
+      out.push_back(mesh_.tets[of_[i]].vertex);
+  }
+  [[nodiscard]] bool is_vertex(VertexId x) const { return first_[x + 1] > first_[x]; }
+
+ private:
+  const SharedMesh& mesh_;
+  std::vector<std::uint32_t> first_;
+  std::vector<TetId> of_;
+};
+
+// A tetrahedron list as MeshStars (ids already checked and mapped to representatives).
+class ListMeshStars : public MeshStars {
+ public:
+  ListMeshStars(std::size_t n, const std::vector<Tetrahedron>& tets) : first_(n + 1, 0) {
+    for (const Tetrahedron& t : tets) {
+      for (const VertexId v : t) ++first_[v + 1];
+    }
+    std::partial_sum(first_.begin(), first_.end(), first_.begin());
+    of_.resize(first_.back());
+    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
+    for (std::size_t i = 0; i < tets.size(); ++i) {
+      for (const VertexId v : tets[i]) of_[fill[v]++] = static_cast<std::uint32_t>(i);
+    }
+    tets_ = &tets;
+  }
+  void tetrahedra_of(VertexId x, std::vector<Quad>& out) const override {
+    out.clear();
+    for (std::uint32_t i = first_[x]; i < first_[x + 1]; ++i) out.push_back((*tets_)[of_[i]]);
+  }
+
+ private:
+  std::vector<std::uint32_t> first_;
+  std::vector<std::uint32_t> of_;
+  const std::vector<Tetrahedron>* tets_ = nullptr;
+};
+
+struct FaceEntry {
+  std::array<VertexId, 3> key;
+  FaceRef ref;
+  bool is_new;
+};
+
+std::array<VertexId, 3> face_key(const Quad& q, std::size_t f) {
+  const auto& fv = kFaceVertex[f];
+  std::array<VertexId, 3> k{q[static_cast<std::size_t>(fv[0])], q[static_cast<std::size_t>(fv[1])],
+                            q[static_cast<std::size_t>(fv[2])]};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+}  // namespace
+
+void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayStats& stats) {
+  const auto t0 = Clock::now();
+  stats.done = true;
+  const std::vector<Point3>& points = mesh.points;
+  const SharedMeshStars stars_of_mesh(mesh);
+  std::vector<char> seed(points.size(), 0);
+  auto seed_quad = [&](const Quad& q) {
+    for (const VertexId v : q) {
+      if (v != kInfiniteVertex) seed[v] = 1;
+    }
+  };
+  // The exact scan: every non-Delaunay face (infinite tetrahedra included: a reflex hull edge)
+  // and every flat or inverted finite tetrahedron seeds its vertices.
+  const std::size_t slots = mesh.tets.size();
+  for (std::size_t i = 0; i < slots; ++i) {
+    const Tet& t = mesh.tets[static_cast<TetId>(i)];
+    if (!t.alive.load(std::memory_order_acquire)) continue;
+    if (!t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
+                                            points[t.vertex[2]], points[t.vertex[3]]) <= 0) {
+      ++stats.bad_tetrahedra;
+      seed_quad(t.vertex);
+    }
+    for (std::size_t f = 0; f < 4; ++f) {
+      const TetId other = ref_tet(t.neighbor[f]);
+      if (other < i) continue;  // each face once
+      const Tet& u = mesh.tets[other];
+      const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
+      const VertexId mine = t.vertex[f];
+      const bool bad = (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
+                       (mine != kInfiniteVertex && in_conflict<Exact>(points, u.vertex, mine));
+      if (bad) {
+        ++stats.non_delaunay_faces;
+        seed_quad(t.vertex);
+        seed_quad(u.vertex);
+      }
+    }
+  }
+  // Burglary's marks: the live tetrahedra at and below them in the DAG.
+  std::vector<TetId> pending = marks;
+  std::vector<char> seen(slots, 0);
+  while (!pending.empty()) {
+    const TetId t = pending.back();
+    pending.pop_back();
+    if (t >= slots || seen[t] != 0) continue;
+    seen[t] = 1;
+    const Tet& tet = mesh.tets[t];
+    if (tet.alive.load(std::memory_order_acquire)) {
+      seed_quad(tet.vertex);
+      continue;
+    }
+    for (const auto& c : tet.child) {
+      const TetId child = c.load(std::memory_order_acquire);
+      if (child != kNoTet) pending.push_back(child);
+    }
+  }
+  // Each set of equal points has one vertex in the result (`canonical`: the vertex the engine
+  // kept, else the lowest index): one that is no vertex yet (an abandoned insertion) is seeded; a
+  // second vertex of the same point (an inexact kernel can insert a duplicate) seeds the vertices
+  // around it, whose new stars leave it out. (The engine's skipped duplicates are the other
+  // points of each set: nothing to do.)
+  const std::vector<VertexId> canonical =
+      canonical_points(points, [&](VertexId v) { return stars_of_mesh.is_vertex(v); });
+  std::vector<VertexId> vertices;
+  std::vector<Quad> around;
+  for (VertexId v = 0; v < points.size(); ++v) {
+    if (canonical[v] == v) {
+      vertices.push_back(v);
+      if (!stars_of_mesh.is_vertex(v)) {
+        seed[v] = 1;
+        ++stats.missing_vertices;
+      }
+    } else if (stars_of_mesh.is_vertex(v)) {
+      stars_of_mesh.tetrahedra_of(v, around);
+      for (const Quad& q : around) seed_quad(q);
+    }
+  }
+  std::vector<VertexId> seeds;
+  for (VertexId v = 0; v < points.size(); ++v) {
+    if (seed[v] != 0 && canonical[v] == v) seeds.push_back(v);
+  }
+  stats.seeds = seeds.size();
+  if (seeds.empty()) {
+    stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return;
+  }
+
+  std::vector<VertexId> present;  // the vertices of the mesh, for the near-point grid
+  for (const VertexId v : vertices) {
+    if (stars_of_mesh.is_vertex(v)) present.push_back(v);
+  }
+  const NearGrid grid(points, present);
+  StarSplayer splayer(points, stars_of_mesh, canonical, pool_of(points, vertices),
+                      [&](VertexId x, std::vector<VertexId>& out) {
+                        grid.near(x, out);
+                        std::vector<Quad> around;
+                        const std::size_t found = out.size();
+                        for (std::size_t i = 0; i < found; ++i) {  // and their neighbours
+                          stars_of_mesh.tetrahedra_of(out[i], around);
+                          for (const Quad& q : around) {
+                            for (const VertexId y : q) {
+                              if (y != kInfiniteVertex) out.push_back(y);
+                            }
+                          }
+                        }
+                      });
+  for (const VertexId v : seeds) splayer.activate(v);
+  splayer.run();
+
+  // Write back. New: every tetrahedron of an active star, once. Old: every live tetrahedron at an
+  // active vertex, replaced. The enforcement made the two agree wherever an inactive vertex is
+  // involved, so the new ones fit the kept ones face to face. A broken mesh can defeat that at an
+  // inactive vertex (the fast kernel's mesh may hold a face in two pairs of tetrahedra, all locally
+  // Delaunay): the vertices of every face that does not fit are splayed too, and the plan is made
+  // again.
+  std::vector<TetId> dying;
+  std::vector<Quad> created;
+  std::vector<FaceEntry> faces;
+  for (;;) {
+    std::vector<Quad> fresh;
+    for (const VertexId v : splayer.active_vertices()) {
+      for (const Quad& q : splayer.star(v).tetrahedra()) {
+        VertexId owner = v;
+        for (const VertexId y : q) {
+          if (y != kInfiniteVertex && splayer.active(y)) owner = std::min(owner, y);
+        }
+        if (owner == v) fresh.push_back(q);
+      }
+    }
+    dying.clear();
+    for (std::size_t i = 0; i < slots; ++i) {
+      const Tet& t = mesh.tets[static_cast<TetId>(i)];
+      if (!t.alive.load(std::memory_order_acquire)) continue;
+      bool touched = false;
+      for (const VertexId v : t.vertex) touched |= v != kInfiniteVertex && splayer.active(v);
+      if (touched) dying.push_back(static_cast<TetId>(i));
+    }
+    std::vector<char> is_dying(slots, 0);
+    for (const TetId t : dying) is_dying[t] = 1;
+    faces.clear();
+    for (const TetId t : dying) {
+      const Tet& tet = mesh.tets[t];
+      for (std::size_t f = 0; f < 4; ++f) {
+        const FaceRef outside = tet.neighbor[f];
+        if (is_dying[ref_tet(outside)] == 0) {
+          faces.push_back({face_key(tet.vertex, f), outside, false});
+        }
+      }
+    }
+    created = std::move(fresh);
+    for (std::size_t j = 0; j < created.size(); ++j) {
+      for (std::size_t f = 0; f < 4; ++f) {
+        faces.push_back(
+            {face_key(created[j], f), face_ref(static_cast<TetId>(j), static_cast<int>(f)), true});
+      }
+    }
+    std::sort(faces.begin(), faces.end(),
+              [](const FaceEntry& a, const FaceEntry& b) { return a.key < b.key; });
+    // A face fits when exactly two entries have its key, at least one of them new.
+    std::vector<VertexId> grow;
+    for (std::size_t i = 0; i < faces.size();) {
+      std::size_t j = i;
+      bool any_new = false;
+      while (j < faces.size() && faces[j].key == faces[i].key) any_new |= faces[j++].is_new;
+      if (j - i != 2 || !any_new) {
+        auto add = [&](VertexId v) {
+          if (v != kInfiniteVertex && canonical[v] == v && !splayer.active(v)) grow.push_back(v);
+        };
+        for (const VertexId v : faces[i].key) add(v);
+        // The tetrahedra on the kept side: their other vertices too.
+        for (std::size_t k = i; k < j; ++k) {
+          if (faces[k].is_new) continue;
+          for (const VertexId v : mesh.tets[ref_tet(faces[k].ref)].vertex) add(v);
+        }
+        if (grow.empty()) {
+          throw std::logic_error(
+              "star splaying: the repaired region does not fit the mesh around it");
+        }
+      }
+      i = j;
+    }
+    if (grow.empty()) break;
+    ++stats.regrown;
+    for (const VertexId v : grow) splayer.activate(v);
+    splayer.run();
+  }
+  stats.stars = splayer.counts().stars;
+  stats.offers = splayer.counts().offers;
+  stats.changes = splayer.counts().changes;
+  std::vector<TetId> ids(created.size());
+  for (std::size_t j = 0; j < created.size(); ++j) {
+    ids[j] = mesh.tets.allocate();
+    Tet& tet = mesh.tets[ids[j]];
+    tet.vertex = created[j];
+    for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
+    tet.lock_owner.store(0, std::memory_order_relaxed);
+  }
+  auto resolve = [&](const FaceEntry& e) {
+    return e.is_new ? face_ref(ids[ref_tet(e.ref)], ref_face(e.ref)) : e.ref;
+  };
+  for (std::size_t i = 0; i < faces.size(); i += 2) {
+    const FaceRef a = resolve(faces[i]);
+    const FaceRef b = resolve(faces[i + 1]);
+    mesh.tets[ref_tet(a)].neighbor[static_cast<std::size_t>(ref_face(a))] = b;
+    mesh.tets[ref_tet(b)].neighbor[static_cast<std::size_t>(ref_face(b))] = a;
+  }
+  for (const TetId t : dying) mesh.tets[t].alive.store(false, std::memory_order_release);
+  for (const TetId t : ids) mesh.tets[t].alive.store(true, std::memory_order_release);
+  stats.tetrahedra_removed = dying.size();
+  stats.tetrahedra_created = created.size();
+  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::vector<Tetrahedron> splay_tetrahedra(const std::vector<Point3>& points,
+                                          const std::vector<Tetrahedron>& tets, SplayStats& stats) {
+  const auto t0 = Clock::now();
+  stats.done = true;
+  // Duplicates: each set is named by its lowest index.
+  const std::vector<VertexId> representative =
+      canonical_points(points, [](VertexId /*v*/) { return false; });
+  std::vector<VertexId> vertices;
+  for (VertexId v = 0; v < points.size(); ++v) {
+    if (representative[v] == v) vertices.push_back(v);
+  }
+  std::vector<Tetrahedron> mapped;
+  mapped.reserve(tets.size());
+  for (Tetrahedron t : tets) {
+    for (auto& v : t) v = representative[v];
+    mapped.push_back(t);
+  }
+  const ListMeshStars stars_of_mesh(points.size(), mapped);
+  const NearGrid grid(points, vertices);
+  StarSplayer splayer(points, stars_of_mesh, representative, pool_of(points, vertices),
+                      [&](VertexId x, std::vector<VertexId>& out) { grid.near(x, out); });
+  std::vector<Quad> around;
+  for (const VertexId v : vertices) {
+    stars_of_mesh.tetrahedra_of(v, around);
+    if (around.empty()) ++stats.missing_vertices;
+    splayer.activate(v);
+  }
+  stats.seeds = vertices.size();
+  splayer.run();
+  stats.stars = splayer.counts().stars;
+  stats.offers = splayer.counts().offers;
+  stats.changes = splayer.counts().changes;
+  std::vector<Tetrahedron> out;
+  for (const VertexId v : vertices) {
+    for (const Quad& q : splayer.star(v).tetrahedra()) {
+      if (std::find(q.begin(), q.end(), kInfiniteVertex) != q.end()) continue;
+      if (*std::min_element(q.begin(), q.end()) == v) out.push_back(q);
+    }
+  }
+  stats.tetrahedra_created = out.size();
+  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return out;
+}
+
+std::vector<Tetrahedron> repair(const std::vector<Point3>& points,
+                                const std::vector<Tetrahedron>& tets, SplayStats& stats) {
+  double max_abs = 0.0;
+  double min_abs = 0.0;
+  for (const Point3& p : points) {
+    for (const double c : {p.x, p.y, p.z}) {
+      if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
+      const double m = std::fabs(c);
+      max_abs = std::max(max_abs, m);
+      if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
+    }
+  }
+  for (const Tetrahedron& t : tets) {
+    for (const VertexId v : t) {
+      if (v >= points.size()) throw TriangulationError("a tetrahedron names a missing vertex");
+    }
+  }
+  if (analyze(points).dimension < 3) {
+    throw TriangulationError("no tetrahedralization exists: the points span less than 3D");
+  }
+  // The engine's lossless power-of-two scaling keeps the exact stages off their GMP fallback.
+  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+  if (!scaling.lossless) return splay_tetrahedra(points, tets, stats);
+  std::vector<Point3> scaled = points;
+  for (Point3& p : scaled) {
+    p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
+         std::ldexp(p.z, scaling.exponent)};
+  }
+  return splay_tetrahedra(scaled, tets, stats);
+}
+
+}  // namespace dtlab::engine

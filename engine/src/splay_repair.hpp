@@ -1,0 +1,26 @@
+#pragma once
+// Star splaying applied: to the engine's shared mesh after a run (burglary's marks, the fast
+// kernel's errors), and to any tetrahedron list (dtlab repair). Exact predicates throughout.
+#include <cstdint>
+#include <vector>
+
+#include "dtlab/engine/triangulate.hpp"
+#include "shared_mesh.hpp"
+
+namespace dtlab::engine {
+
+// Repairs the live tetrahedra of `mesh` (infinite ones included) into the Delaunay
+// tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (DAG
+// nodes: the live tetrahedra at and below them), of every non-Delaunay face and of every flat or
+// inverted finite tetrahedron, from every point that should be a vertex and is none (an abandoned
+// insertion), and around a second vertex of one point; the rest of the mesh is kept. `stats` gets
+// the counts and the time.
+void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayStats& stats);
+
+// The Delaunay tetrahedralization of `points` from any list of tetrahedra on them (ids checked by
+// the caller): every distinct point gets a star, from its neighbours in `tets` (near points for a
+// point no tetrahedron uses). Duplicate points are named by their lowest index.
+std::vector<Tetrahedron> splay_tetrahedra(const std::vector<Point3>& points,
+                                          const std::vector<Tetrahedron>& tets, SplayStats& stats);
+
+}  // namespace dtlab::engine

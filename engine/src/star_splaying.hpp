@@ -1,0 +1,78 @@
+#pragma once
+// Star splaying (Shewchuk, SoCG 2005): the local repair of a tetrahedralization into the unique
+// (perturbed) Delaunay one. Active vertices keep their own stars (vertex_star.hpp), built from the
+// mesh's neighbours; stars that disagree are reconciled by offering vertices to each other until
+// every active star agrees with every other and, at inactive vertices, with the mesh. The mesh is
+// only read through MeshStars; writing the result back is the caller's (splay_repair.cpp).
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <vector>
+
+#include "vertex_star.hpp"
+
+namespace dtlab::engine {
+
+// What the mesh being repaired says around one vertex.
+class MeshStars {
+ public:
+  MeshStars() = default;
+  MeshStars(const MeshStars&) = delete;
+  MeshStars& operator=(const MeshStars&) = delete;
+  virtual ~MeshStars() = default;
+  // The mesh's tetrahedra that contain x (the vertex at infinity included where the mesh has it).
+  virtual void tetrahedra_of(VertexId x, std::vector<Quad>& out) const = 0;
+};
+
+struct SplayCounts {
+  std::uint64_t stars = 0;    // vertices whose star was built (activated)
+  std::uint64_t offers = 0;   // vertices offered to stars
+  std::uint64_t changes = 0;  // offers that changed a star
+};
+
+class StarSplayer {
+ public:
+  // `canonical[x]`: the lowest index of the points equal to point x; only those become vertices
+  // (a duplicate is mapped to it wherever it is met). `pool`: four affinely independent
+  // vertices, offered to a star whose candidates from the mesh do not span 3D. `near`: vertices
+  // near x, for a vertex the mesh does not use.
+  StarSplayer(const std::vector<predicates::Point3>& points, const MeshStars& mesh,
+              const std::vector<VertexId>& canonical, const std::array<VertexId, 4>& pool,
+              std::function<void(VertexId, std::vector<VertexId>&)> near);
+
+  // Builds x's star from the mesh's neighbours of x and queues it for the consistency check.
+  void activate(VertexId x);
+  // Consistency enforcement until the queue is empty: then every active star's tetrahedron is in
+  // the star of each of its active vertices and in the mesh at each inactive one, and every
+  // tetrahedron of the mesh at an active vertex with an inactive vertex is in the active star.
+  void run();
+
+  [[nodiscard]] bool active(VertexId x) const { return slot_[x] >= 0; }
+  [[nodiscard]] const std::vector<VertexId>& active_vertices() const { return active_; }
+  [[nodiscard]] const VertexStar& star(VertexId x) const {
+    return stars_[static_cast<std::size_t>(slot_[x])];
+  }
+  [[nodiscard]] const SplayCounts& counts() const { return counts_; }
+
+ private:
+  VertexStar& star_of(VertexId x) { return stars_[static_cast<std::size_t>(slot_[x])]; }
+  void offer(VertexId to, VertexId w);
+  void enqueue(VertexId x);
+  bool mesh_has(VertexId x, const Quad& sorted);
+  void check(VertexId v);
+
+  const std::vector<predicates::Point3>& points_;
+  const MeshStars& mesh_;
+  const std::vector<VertexId>& canonical_;
+  std::array<VertexId, 4> pool_;
+  std::function<void(VertexId, std::vector<VertexId>&)> near_;
+  std::vector<int> slot_;  // vertex -> index in stars_, -1 when inactive
+  std::vector<VertexStar> stars_;
+  std::vector<VertexId> active_;
+  std::deque<VertexId> queue_;
+  std::vector<char> queued_;
+  SplayCounts counts_;
+  std::vector<Quad> removed_;  // scratch
+};
+
+}  // namespace dtlab::engine

@@ -1,0 +1,161 @@
+#include "vertex_star.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "dtlab/predicates/kernels.hpp"
+
+namespace dtlab::engine {
+
+using Exact = predicates::AdaptiveKernel;  // exact for every finite double
+
+void VertexStar::start(const std::vector<predicates::Point3>& points, VertexId v, VertexId a,
+                       VertexId b, VertexId c) {
+  const int o = Exact::orient3d(points[v], points[a], points[b], points[c]);
+  if (o == 0) throw std::logic_error("star splaying: a flat first tetrahedron");
+  if (o < 0) std::swap(a, b);
+  center_ = v;
+  const Quad first{v, a, b, c};
+  quads_ = {first};
+  // The infinite tetrahedra on the faces through v (faces 1-3; kFaceVertex leaves the opposite
+  // vertex on the negative side, so the vertex at infinity on the positive one).
+  for (std::size_t f = 1; f < 4; ++f) {
+    const auto& fv = kFaceVertex[f];
+    quads_.push_back({first[static_cast<std::size_t>(fv[0])],
+                      first[static_cast<std::size_t>(fv[1])],
+                      first[static_cast<std::size_t>(fv[2])], kInfiniteVertex});
+  }
+  // Four tetrahedra: link faces by brute force (each pair of quads shares one face through v).
+  across_.assign(4, {-1, -1, -1, -1});
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (i == j) continue;
+      // The vertex of quad i that quad j lacks is opposite their shared face.
+      for (std::size_t k = 0; k < 4; ++k) {
+        const VertexId x = quads_[i][k];
+        if (std::find(quads_[j].begin(), quads_[j].end(), x) == quads_[j].end()) {
+          across_[i][k] = static_cast<int>(j);
+        }
+      }
+    }
+  }
+  known_ = {a, b, c};
+  std::sort(known_.begin(), known_.end());
+  keys_.clear();
+  for (const Quad& q : quads_) keys_.push_back(sorted_quad(q));
+}
+
+bool VertexStar::knows(VertexId w) const {
+  return std::binary_search(known_.begin(), known_.end(), w);
+}
+
+bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w,
+                       std::vector<Quad>& removed) {
+  if (w == center_ || w == kInfiniteVertex || knows(w)) return false;
+  known_.insert(std::lower_bound(known_.begin(), known_.end(), w), w);
+  const std::size_t n = quads_.size();
+  conflict_.assign(n, 0);
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (in_conflict<Exact>(points, quads_[i], w)) {
+      conflict_[i] = 1;
+      any = true;
+    }
+  }
+  if (!any) return false;
+
+  // Kept quads first, in order; then one new quad per horizon face: the conflict quad with the
+  // vertex across the horizon replaced by w (same orientation, as in Bowyer-Watson).
+  remap_.assign(n, -1);
+  std::vector<Quad> quads;
+  std::vector<std::array<int, 4>> across;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (conflict_[i] != 0) continue;
+    remap_[i] = static_cast<int>(quads.size());
+    quads.push_back(quads_[i]);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (conflict_[i] != 0) continue;
+    std::array<int, 4> a = across_[i];
+    for (int& x : a) {
+      if (x >= 0)
+        x = conflict_[static_cast<std::size_t>(x)] != 0 ? -2 : remap_[static_cast<std::size_t>(x)];
+    }
+    across.push_back(a);
+  }
+  struct Open {
+    VertexId key;  // the face's vertex other than the centre and w
+    int quad;
+    int face;
+  };
+  std::vector<Open> open;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (conflict_[i] == 0) continue;
+    removed.push_back(quads_[i]);
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (quads_[i][j] == center_) continue;
+      const int outside = across_[i][j];
+      if (conflict_[static_cast<std::size_t>(outside)] != 0) continue;
+      Quad q = quads_[i];
+      q[j] = w;
+      const int id = static_cast<int>(quads.size());
+      quads.push_back(q);
+      across.push_back({-1, -1, -1, -1});
+      // The horizon face: link both ways (the kept quad's face is opposite its vertex not in q).
+      across.back()[j] = remap_[static_cast<std::size_t>(outside)];
+      const Quad& kept = quads_[static_cast<std::size_t>(outside)];
+      for (std::size_t g = 0; g < 4; ++g) {
+        if (std::find(q.begin(), q.end(), kept[g]) == q.end()) {
+          across[static_cast<std::size_t>(remap_[static_cast<std::size_t>(outside)])][g] = id;
+        }
+      }
+      // The faces through the centre and w: keyed by their third vertex, matched in pairs below.
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (k == j || q[k] == center_) continue;
+        for (std::size_t m = 0; m < 4; ++m) {
+          if (m != j && m != k && q[m] != center_) open.push_back({q[m], id, static_cast<int>(k)});
+        }
+      }
+    }
+  }
+  std::sort(open.begin(), open.end(), [](const Open& x, const Open& y) { return x.key < y.key; });
+  for (std::size_t i = 0; i < open.size(); i += 2) {
+    // The horizon is one cycle of v's link, so each of its vertices is on exactly two new faces.
+    if (i + 1 >= open.size() || open[i].key != open[i + 1].key) {
+      throw std::logic_error("star splaying: the removed tetrahedra are not a disk of the link");
+    }
+    across[static_cast<std::size_t>(open[i].quad)][static_cast<std::size_t>(open[i].face)] =
+        open[i + 1].quad;
+    across[static_cast<std::size_t>(open[i + 1].quad)][static_cast<std::size_t>(open[i + 1].face)] =
+        open[i].quad;
+  }
+  for (std::size_t i = 0; i < quads.size(); ++i) {
+    for (std::size_t j = 0; j < 4; ++j) {
+      if ((quads[i][j] == center_) != (across[i][j] == -1) || across[i][j] == -2) {
+        throw std::logic_error("star splaying: a link face without a neighbour");
+      }
+    }
+  }
+  quads_ = std::move(quads);
+  across_ = std::move(across);
+  keys_.clear();
+  for (const Quad& q : quads_) keys_.push_back(sorted_quad(q));
+  return true;
+}
+
+bool VertexStar::has(const Quad& sorted) const {
+  return std::find(keys_.begin(), keys_.end(), sorted) != keys_.end();
+}
+
+void VertexStar::link_vertices(std::vector<VertexId>& out) const {
+  out.clear();
+  for (const Quad& q : quads_) {
+    for (const VertexId x : q) {
+      if (x != center_) out.push_back(x);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+}  // namespace dtlab::engine

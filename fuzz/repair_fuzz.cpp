@@ -1,0 +1,57 @@
+// bytes -> a point set (small integers times a power of two, as for the triangulate harness, at
+// most 120 points) and then any tetrahedra on it (garbage connectivity: four ids per 4 bytes,
+// taken modulo the point count, repeated and inverted ones included) -> dtlab repair by star
+// splaying. It must end, and equal the engine's exact tetrahedralization (the unique perturbed
+// Delaunay one) when CGAL finds one; when CGAL does not, it must refuse with a
+// TriangulationError.
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+
+#include "cgal_reference.hpp"
+#include "dtlab/engine/repair.hpp"
+#include "dtlab/engine/triangulate.hpp"
+#include "fuzz_input.hpp"
+
+namespace {
+
+[[noreturn]] void fail(const char* what) {
+  std::fprintf(stderr, "repair_fuzz: %s\n", what);
+  std::abort();
+}
+
+std::vector<dtlab::engine::Tetrahedron> canonical(std::vector<dtlab::engine::Tetrahedron> t) {
+  for (auto& x : t) std::sort(x.begin(), x.end());
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size < 2) return 0;
+  // First byte: how many bytes describe points (the rest are tetrahedra).
+  const std::size_t point_bytes = std::min<std::size_t>(size - 1, 2 + 6 * (data[0] % 121));
+  const auto points = dtlab::fuzz::points_from_bytes(data + 1, point_bytes, 120);
+  if (points.empty()) return 0;
+  std::vector<dtlab::engine::Tetrahedron> tets;
+  for (std::size_t i = 1 + point_bytes; i + 4 <= size; i += 4) {
+    tets.push_back({static_cast<std::uint32_t>(data[i] % points.size()),
+                    static_cast<std::uint32_t>(data[i + 1] % points.size()),
+                    static_cast<std::uint32_t>(data[i + 2] % points.size()),
+                    static_cast<std::uint32_t>(data[i + 3] % points.size())});
+  }
+  const int dimension = dtlab::test::cgal_dimension(points);
+  dtlab::engine::SplayStats stats;
+  try {
+    const auto repaired = dtlab::engine::repair(points, tets, stats);
+    if (dimension != 3) fail("repaired a point set without a tetrahedralization");
+    if (canonical(repaired) != canonical(dtlab::engine::triangulate(points, {}).tetrahedra)) {
+      fail("the repaired mesh is not the Delaunay tetrahedralization");
+    }
+  } catch (const dtlab::engine::TriangulationError& e) {
+    if (dimension == 3) fail(e.what());
+  }
+  return 0;
+}

@@ -1,0 +1,170 @@
+// Star splaying (issue 12): a vertex's star, the repair of any tetrahedron list, and the local
+// repair of the engine's mesh. The reference is the engine's own exact sequential result, the
+// unique perturbed Delaunay tetrahedralization (cgal_oracle_test compares the repairs with CGAL).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "dtlab/engine/point_set_info.hpp"
+#include "dtlab/engine/repair.hpp"
+#include "dtlab/engine/triangulate.hpp"
+#include "dtlab/engine/validator.hpp"
+#include "dtlab/generators/generators.hpp"
+#include "incremental_delaunay.hpp"
+#include "splay_repair.hpp"
+#include "vertex_star.hpp"
+
+namespace dtlab::test {
+namespace {
+
+using engine::Quad;
+using engine::VertexId;
+using predicates::Point3;
+
+std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
+  for (auto& x : t) std::sort(x.begin(), x.end());
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+const char* const kFamilies[] = {
+    "uniform",         "normal",     "cluster", "grid",    "sphere", "cospherical",
+    "near-duplicates", "duplicates", "planes",  "lattice", "tiny",   "huge"};
+
+// Offering every point to a vertex's star gives its star in the Delaunay tetrahedralization.
+TEST(VertexStar, OfferingEveryPointGivesTheDelaunayStar) {
+  for (const std::string family : {"uniform", "grid", "sphere", "cospherical"}) {
+    const auto points = generators::generate(family, 300, 2).points;
+    const auto delaunay = engine::triangulate(points, {}).tetrahedra;
+    for (const VertexId v : {0U, 17U, 123U, 299U}) {
+      // Three points not coplanar with v start the star.
+      std::array<VertexId, 3> abc{};
+      std::vector<std::uint32_t> order{v};
+      for (VertexId w = 0; w < points.size(); ++w) {
+        if (w != v) order.push_back(w);
+      }
+      const auto simplex = engine::find_simplex(points, order).simplex;
+      ASSERT_TRUE(simplex.has_value());
+      ASSERT_EQ((*simplex)[0], v);
+      abc = {(*simplex)[1], (*simplex)[2], (*simplex)[3]};
+      engine::VertexStar star;
+      star.start(points, v, abc[0], abc[1], abc[2]);
+      std::vector<Quad> removed;
+      for (VertexId w = 0; w < points.size(); ++w) star.offer(points, w, removed);
+      std::vector<io::Tetrahedron> finite;
+      for (const Quad& q : star.tetrahedra()) {
+        EXPECT_NE(std::find(q.begin(), q.end(), v), q.end());
+        if (std::find(q.begin(), q.end(), engine::kInfiniteVertex) == q.end()) {
+          finite.push_back(q);
+          EXPECT_GT(predicates::AdaptiveKernel::orient3d(points[q[0]], points[q[1]], points[q[2]],
+                                                         points[q[3]]),
+                    0);
+        }
+      }
+      std::vector<io::Tetrahedron> expected;
+      for (const auto& t : delaunay) {
+        if (std::find(t.begin(), t.end(), v) != t.end()) expected.push_back(t);
+      }
+      EXPECT_EQ(canonical(finite), canonical(expected)) << family << " vertex " << v;
+    }
+  }
+}
+
+// From nothing, from garbage and from the Delaunay mesh itself: always the Delaunay mesh.
+TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
+  for (const std::string family : kFamilies) {
+    const auto points = generators::generate(family, 250, 3).points;
+    const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+    std::mt19937_64 rng(7);
+    std::vector<io::Tetrahedron> garbage;
+    for (int i = 0; i < 300; ++i) {
+      io::Tetrahedron t{};
+      for (auto& v : t) v = static_cast<VertexId>(rng() % points.size());
+      garbage.push_back(t);  // repeated ids, inverted, overlapping: anything
+    }
+    for (const auto& [name, start] :
+         {std::pair<std::string, std::vector<io::Tetrahedron>>{"nothing", {}},
+          {"garbage", garbage},
+          {"delaunay", expected}}) {
+      engine::SplayStats stats;
+      const auto repaired = engine::repair(points, start, stats);
+      EXPECT_EQ(canonical(repaired), expected) << family << " from " << name;
+      EXPECT_TRUE(engine::validate(points, repaired).valid()) << family << " from " << name;
+    }
+  }
+}
+
+// The local repair of the engine's mesh: forced flips break it; splaying from the broken faces
+// gives back the Delaunay mesh and touches only stars near them.
+TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
+  const auto points = generators::generate("uniform", 2000, 5).points;
+  engine::TriangulateOptions options;
+  engine::TriangulationStats build_stats;
+  engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt(points, options, build_stats);
+  std::vector<std::uint32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0U);
+  const auto first = *engine::find_simplex(points, order).simplex;
+  dt.start(first[0], first[1], first[2], first[3]);
+  for (const std::uint32_t v : order) {
+    if (std::find(first.begin(), first.end(), v) == first.end()) dt.insert(v);
+  }
+  const auto limit = static_cast<VertexId>(points.size());
+  const auto expected = canonical(dt.finite_tetrahedra(limit));
+  std::mt19937_64 rng(3);
+  int made = 0;
+  for (int attempt = 0; made < 20 && attempt < 100000; ++attempt) {
+    const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
+    if (!dt.mesh().tets[t].alive.load()) continue;
+    made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
+  }
+  ASSERT_EQ(made, 20);
+  ASSERT_GT(engine::validate(points, dt.finite_tetrahedra(limit)).non_delaunay_faces, 0U);
+  engine::SplayStats stats;
+  engine::splay_shared_mesh(dt.mesh(), {}, stats);
+  EXPECT_GT(stats.non_delaunay_faces, 0U);
+  EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
+  EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid());
+  // Local: 20 flips touch a few dozen vertices, not the 2000.
+  EXPECT_LT(stats.stars, 400U) << stats.stars;
+  EXPECT_GT(stats.tetrahedra_created, 0U);
+  // A Delaunay mesh is left alone: nothing found, nothing splayed.
+  engine::SplayStats again;
+  engine::splay_shared_mesh(dt.mesh(), {}, again);
+  EXPECT_EQ(again.non_delaunay_faces, 0U);
+  EXPECT_EQ(again.stars, 0U);
+  EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
+}
+
+// --repair after the fast kernel, every method: the exact Delaunay mesh on every family, the
+// families where the fast kernel breaks the mesh included.
+TEST(SplayRepair, FastKernelThenRepairGivesTheDelaunayMesh) {
+  for (const std::string family : kFamilies) {
+    const auto points = generators::generate(family, 1500, 4).points;
+    const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+    for (const auto method : {engine::Method::Sequential, engine::Method::OptimisticDetect,
+                              engine::Method::Burglary, engine::Method::Batch}) {
+      engine::TriangulateOptions options;
+      options.kernel = engine::KernelKind::Fast;
+      options.method = method;
+      options.threads = method == engine::Method::Sequential ? 1 : 2;
+      options.repair = engine::Repair::Splay;
+      const std::string what = family + " " + engine::to_string(method);
+      engine::Triangulation result;
+      try {
+        result = engine::triangulate(points, options);
+      } catch (const engine::TriangulationError& e) {
+        // The fast kernel's own refusal (a first tetrahedron it sees as flat) is allowed.
+        EXPECT_NE(std::string(e.what()).find("flat under this kernel"), std::string::npos)
+            << what << ": " << e.what();
+        continue;
+      }
+      EXPECT_TRUE(result.stats.splay.done) << what;
+      EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dtlab::test
