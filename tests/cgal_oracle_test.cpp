@@ -119,7 +119,7 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
 TEST(CgalOracle, EveryFamilyRepairedIdenticalTetrahedra) {
   int compared = 0;
   for (const std::string& family : generators::families()) {
-    const auto pts = generators::generate(family, 1500, 7).points;
+    const auto pts = generators::generate(family, 300, 7).points;
     if (cgal_dimension(pts) < 3) continue;
     const auto cgal = cgal_delaunay(pts);
     for (const int threads : {2, 4}) {
