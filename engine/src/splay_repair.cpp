@@ -240,22 +240,12 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayS
       }
     }
   }
-  // Burglary's marks: the live tetrahedra at and below them in the DAG.
-  std::vector<TetId> pending = marks;
-  std::vector<char> seen(slots, 0);
-  while (!pending.empty()) {
-    const TetId t = pending.back();
-    pending.pop_back();
-    if (t >= slots || seen[t] != 0) continue;
-    seen[t] = 1;
-    const Tet& tet = mesh.tets[t];
-    if (tet.alive.load(std::memory_order_acquire)) {
-      seed_quad(tet.vertex);
-      continue;
-    }
-    for (const auto& c : tet.child) {
-      const TetId child = c.load(std::memory_order_acquire);
-      if (child != kNoTet) pending.push_back(child);
+  // Burglary's marks that are still live tetrahedra. (A dead mark stands for the live tetrahedra
+  // below it in the DAG, which for a mark made early is much of the mesh; the exact scan above
+  // finds every non-Delaunay face among them anyway.)
+  for (const TetId t : marks) {
+    if (t < slots && mesh.tets[t].alive.load(std::memory_order_acquire)) {
+      seed_quad(mesh.tets[t].vertex);
     }
   }
   // Each set of equal points has one vertex in the result (`canonical`: the vertex the engine

@@ -10,8 +10,8 @@
 namespace dtlab::engine {
 
 // Repairs the live tetrahedra of `mesh` (infinite ones included) into the Delaunay
-// tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (DAG
-// nodes: the live tetrahedra at and below them), of every non-Delaunay face and of every flat or
+// tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (those
+// still live), of every non-Delaunay face and of every flat or
 // inverted finite tetrahedron, from every point that should be a vertex and is none (an abandoned
 // insertion), and around a second vertex of one point; the rest of the mesh is kept. `stats` gets
 // the counts and the time.

@@ -54,15 +54,51 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
   if (w == center_ || w == kInfiniteVertex || knows(w)) return false;
   known_.insert(std::lower_bound(known_.begin(), known_.end(), w), w);
   const std::size_t n = quads_.size();
+  // The tetrahedra w conflicts with form a disk of the link whose interior holds w's direction
+  // from the centre (w becomes a vertex of the link, its fan replacing the disk). So one test
+  // decides: the tetrahedron whose closed cone at the centre holds that direction (cheap orient3d
+  // tests) conflicts with w, or nothing does. Outside every finite cone the direction leaves the
+  // hull of what the centre knows, beyond a hull face at the centre: an infinite tetrahedron's.
+  int start = -1;
+  bool held = false;
+  for (std::size_t i = 0; i < n && !held; ++i) {
+    const Quad& q = quads_[i];
+    if (std::find(q.begin(), q.end(), kInfiniteVertex) != q.end()) continue;
+    held = true;
+    for (std::size_t j = 0; j < 4 && held; ++j) {
+      if (q[j] == center_) continue;
+      Quad r = q;
+      r[j] = w;  // w on the inner side of the face opposite q[j], or on it
+      held = Exact::orient3d(points[r[0]], points[r[1]], points[r[2]], points[r[3]]) >= 0;
+    }
+    if (held && in_conflict<Exact>(points, q, w)) start = static_cast<int>(i);
+  }
+  for (std::size_t i = 0; i < n && !held && start < 0; ++i) {
+    const Quad& q = quads_[i];
+    if (std::find(q.begin(), q.end(), kInfiniteVertex) == q.end()) continue;
+    if (in_conflict<Exact>(points, q, w)) start = static_cast<int>(i);
+  }
+  if (start < 0) return false;
+  // The rest of the disk: a search over the link from there.
   conflict_.assign(n, 0);
-  bool any = false;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (in_conflict<Exact>(points, quads_[i], w)) {
-      conflict_[i] = 1;
-      any = true;
+  visited_.assign(n, 0);
+  stack_.assign(1, start);
+  conflict_[static_cast<std::size_t>(start)] = 1;
+  visited_[static_cast<std::size_t>(start)] = 1;
+  while (!stack_.empty()) {
+    const auto i = static_cast<std::size_t>(stack_.back());
+    stack_.pop_back();
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (quads_[i][j] == center_) continue;
+      const auto next = static_cast<std::size_t>(across_[i][j]);
+      if (visited_[next] != 0) continue;
+      visited_[next] = 1;
+      if (in_conflict<Exact>(points, quads_[next], w)) {
+        conflict_[next] = 1;
+        stack_.push_back(static_cast<int>(next));
+      }
     }
   }
-  if (!any) return false;
 
   // Kept quads first, in order; then one new quad per horizon face: the conflict quad with the
   // vertex across the horizon replaced by w (same orientation, as in Bowyer-Watson).

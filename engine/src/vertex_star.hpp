@@ -45,6 +45,8 @@ class VertexStar {
   std::vector<VertexId> known_;  // sorted
   // Scratch, reused across offers.
   std::vector<char> conflict_;
+  std::vector<char> visited_;
+  std::vector<int> stack_;
   std::vector<int> remap_;
 };
 

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# dtlab repair: the fast kernel's mesh of a sphere (broken) and a Delaunay mesh with one
+# tetrahedron dropped (a hole) become the Delaunay mesh, equal to the exact triangulation; a mesh
+# that names a vertex the points do not have, or an unreadable file, is an error (exit 2).
+set -euo pipefail
+dtlab="$1"
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+# The tetrahedra of an .ele as sorted vertex sets, one per line, sorted.
+sorted() {
+  python3 -c 'import sys
+rows = [l.split() for l in open(sys.argv[1]) if l.strip() and not l.startswith("#")][1:]
+print("\n".join(sorted(" ".join(sorted(r[1:5], key=int)) for r in rows)))' "$1"
+}
+"$dtlab" triangulate sphere:3000 -o "$dir/exact.ele" >/dev/null
+"$dtlab" triangulate sphere:3000 --predicates fast -o "$dir/fast.ele" >/dev/null
+if "$dtlab" validate "$dir/fast.node" "$dir/fast.ele" >/dev/null 2>&1; then
+  echo "the fast kernel's sphere mesh was valid: the test repairs nothing"; exit 1
+fi
+"$dtlab" repair "$dir/fast.node" "$dir/fast.ele" -o "$dir/repaired.ele" --validate \
+  --stats "$dir/stats.json" >/dev/null
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["validation_valid"] and d["stars"] == 3000, d' "$dir/stats.json"
+diff <(sorted "$dir/exact.ele") <(sorted "$dir/repaired.ele") >/dev/null
+# A hole: the first tetrahedron dropped.
+python3 -c 'import sys
+lines = [l for l in open(sys.argv[1]) if not l.startswith("#")]
+n = int(lines[0].split()[0])
+open(sys.argv[2], "w").write("%d 4 0\n" % (n - 1) + "".join(lines[2:]))' "$dir/exact.ele" "$dir/hole.ele"
+"$dtlab" repair "$dir/exact.node" "$dir/hole.ele" -o "$dir/filled.ele" >/dev/null
+diff <(sorted "$dir/exact.ele") <(sorted "$dir/filled.ele") >/dev/null
+# Errors: a vertex id beyond the points, a missing file.
+printf '1 4 0\n0 0 1 2 99999\n' >"$dir/bad.ele"
+set +e
+"$dtlab" repair "$dir/exact.node" "$dir/bad.ele" >/dev/null 2>"$dir/err"
+code=$?
+"$dtlab" repair "$dir/exact.node" "$dir/missing.ele" >/dev/null 2>&1
+code2=$?
+set -e
+if [ "$code" -ne 2 ] || [ "$code2" -ne 2 ]; then
+  echo "bad mesh: exit $code and $code2, expected 2: $(cat "$dir/err")"; exit 1
+fi
+echo "cli_repair: ok"
