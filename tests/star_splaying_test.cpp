@@ -122,7 +122,7 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   ASSERT_EQ(made, 20);
   ASSERT_GT(engine::validate(points, dt.finite_tetrahedra(limit)).non_delaunay_faces, 0U);
   engine::SplayStats stats;
-  engine::splay_shared_mesh(dt.mesh(), {}, stats);
+  engine::splay_shared_mesh(dt.mesh(), {}, true, stats);
   EXPECT_GT(stats.non_delaunay_faces, 0U);
   EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
   EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid());
@@ -131,7 +131,7 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   EXPECT_GT(stats.tetrahedra_created, 0U);
   // A Delaunay mesh is left alone: nothing found, nothing splayed.
   engine::SplayStats again;
-  engine::splay_shared_mesh(dt.mesh(), {}, again);
+  engine::splay_shared_mesh(dt.mesh(), {}, true, again);
   EXPECT_EQ(again.non_delaunay_faces, 0U);
   EXPECT_EQ(again.stars, 0U);
   EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);

@@ -214,7 +214,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   const double check_before = check.seconds_check;
   if (options.repair == Repair::Splay) {
     // Star splaying from the marks and every non-Delaunay face: always ends Delaunay.
-    splay_shared_mesh(mesh, marks, stats.splay);
+    splay_shared_mesh(mesh, marks, options.kernel != KernelKind::Fast, stats.splay);
     tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
     count(tets);
     check.seconds_repair = stats.splay.seconds;
@@ -511,7 +511,8 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     return post_check<K>(mesh, input_count, marks, full_order, first, skip_first, all_duplicates,
                          options, stats);
   }
-  if (options.repair == Repair::Splay) splay_shared_mesh(mesh, {}, stats.splay);
+  if (options.repair == Repair::Splay)
+    splay_shared_mesh(mesh, {}, options.kernel != KernelKind::Fast, stats.splay);
   return mesh.finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
 }
 

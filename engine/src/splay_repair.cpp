@@ -203,7 +203,8 @@ std::array<VertexId, 3> face_key(const Quad& q, std::size_t f) {
 
 }  // namespace
 
-void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayStats& stats) {
+void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
+                       SplayStats& stats) {
   const auto t0 = Clock::now();
   stats.done = true;
   const std::vector<Point3>& points = mesh.points;
@@ -215,7 +216,9 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayS
     }
   };
   // The exact scan: every non-Delaunay face (infinite tetrahedra included: a reflex hull edge)
-  // and every flat or inverted finite tetrahedron seeds its vertices.
+  // and every flat or inverted finite tetrahedron seeds its vertices. A face is tested from both
+  // sides where an inexact kernel built the mesh (its two tetrahedra need not be what their
+  // insphere tests agree on); on an exactly built mesh one side decides.
   const std::size_t slots = mesh.tets.size();
   for (std::size_t i = 0; i < slots; ++i) {
     const Tet& t = mesh.tets[static_cast<TetId>(i)];
@@ -231,8 +234,10 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayS
       const Tet& u = mesh.tets[other];
       const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
       const VertexId mine = t.vertex[f];
-      const bool bad = (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
-                       (mine != kInfiniteVertex && in_conflict<Exact>(points, u.vertex, mine));
+      const bool one_side = exact_mesh && apex != kInfiniteVertex;
+      const bool bad =
+          (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
+          (!one_side && mine != kInfiniteVertex && in_conflict<Exact>(points, u.vertex, mine));
       if (bad) {
         ++stats.non_delaunay_faces;
         seed_quad(t.vertex);

@@ -13,9 +13,11 @@ namespace dtlab::engine {
 // tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (those
 // still live), of every non-Delaunay face and of every flat or
 // inverted finite tetrahedron, from every point that should be a vertex and is none (an abandoned
-// insertion), and around a second vertex of one point; the rest of the mesh is kept. `stats` gets
-// the counts and the time.
-void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, SplayStats& stats);
+// insertion), and around a second vertex of one point; the rest of the mesh is kept.
+// `exact_mesh`: the mesh was built with exact predicates (each face is then scanned from one side
+// only). `stats` gets the counts and the time.
+void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
+                       SplayStats& stats);
 
 // The Delaunay tetrahedralization of `points` from any list of tetrahedra on them (ids checked by
 // the caller): every distinct point gets a star, from its neighbours in `tets` (near points for a

@@ -94,7 +94,8 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   stats.dag_nodes = dt.dag_nodes();
   stats.predicate_calls = dt.predicate_calls();
   stats.location_steps = dt.location_steps();
-  if (options.repair == Repair::Splay) splay_shared_mesh(dt.mesh(), {}, stats.splay);
+  if (options.repair == Repair::Splay)
+    splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, stats.splay);
   return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
