@@ -127,24 +127,19 @@ std::array<VertexId, 4> pool_of(const std::vector<Point3>& points,
 // (not a walk over neighbours: a broken mesh's star need not be connected through its faces).
 class SharedMeshStars : public MeshStars {
  public:
-  explicit SharedMeshStars(const SharedMesh& mesh)
+  SharedMeshStars(const SharedMesh& mesh, const std::vector<TetId>& live)
       : mesh_(mesh), first_(mesh.points.size() + 1, 0) {
-    const std::size_t n = mesh.tets.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Tet& t = mesh.tets[static_cast<TetId>(i)];
-      if (!t.alive.load(std::memory_order_acquire)) continue;
-      for (const VertexId v : t.vertex) {
+    for (const TetId t : live) {
+      for (const VertexId v : mesh.tets[t].vertex) {
         if (v != kInfiniteVertex) ++first_[v + 1];
       }
     }
     std::partial_sum(first_.begin(), first_.end(), first_.begin());
     of_.resize(first_.back());
     std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Tet& t = mesh.tets[static_cast<TetId>(i)];
-      if (!t.alive.load(std::memory_order_acquire)) continue;
-      for (const VertexId v : t.vertex) {
-        if (v != kInfiniteVertex) of_[fill[v]++] = static_cast<TetId>(i);
+    for (const TetId t : live) {
+      for (const VertexId v : mesh.tets[t].vertex) {
+        if (v != kInfiniteVertex) of_[fill[v]++] = t;
       }
     }
   }
@@ -208,7 +203,15 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   const auto t0 = Clock::now();
   stats.done = true;
   const std::vector<Point3>& points = mesh.points;
-  const SharedMeshStars stars_of_mesh(mesh);
+  // One pass over the store (DAG nodes included, about 50 slots per point): the live tetrahedra.
+  const std::size_t slots = mesh.tets.size();
+  std::vector<TetId> live;
+  for (std::size_t i = 0; i < slots; ++i) {
+    if (mesh.tets[static_cast<TetId>(i)].alive.load(std::memory_order_acquire)) {
+      live.push_back(static_cast<TetId>(i));
+    }
+  }
+  const SharedMeshStars stars_of_mesh(mesh, live);
   std::vector<char> seed(points.size(), 0);
   auto seed_quad = [&](const Quad& q) {
     for (const VertexId v : q) {
@@ -219,10 +222,8 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // and every flat or inverted finite tetrahedron seeds its vertices. A face is tested from both
   // sides where an inexact kernel built the mesh (its two tetrahedra need not be what their
   // insphere tests agree on); on an exactly built mesh one side decides.
-  const std::size_t slots = mesh.tets.size();
-  for (std::size_t i = 0; i < slots; ++i) {
-    const Tet& t = mesh.tets[static_cast<TetId>(i)];
-    if (!t.alive.load(std::memory_order_acquire)) continue;
+  for (const TetId i : live) {
+    const Tet& t = mesh.tets[i];
     if (!t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
                                             points[t.vertex[2]], points[t.vertex[3]]) <= 0) {
       ++stats.bad_tetrahedra;
@@ -327,12 +328,12 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
       }
     }
     dying.clear();
-    for (std::size_t i = 0; i < slots; ++i) {
-      const Tet& t = mesh.tets[static_cast<TetId>(i)];
-      if (!t.alive.load(std::memory_order_acquire)) continue;
+    for (const TetId i : live) {
       bool touched = false;
-      for (const VertexId v : t.vertex) touched |= v != kInfiniteVertex && splayer.active(v);
-      if (touched) dying.push_back(static_cast<TetId>(i));
+      for (const VertexId v : mesh.tets[i].vertex) {
+        touched |= v != kInfiniteVertex && splayer.active(v);
+      }
+      if (touched) dying.push_back(i);
     }
     std::vector<char> is_dying(slots, 0);
     for (const TetId t : dying) is_dying[t] = 1;
