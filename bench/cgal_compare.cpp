@@ -1,13 +1,25 @@
-// dtlab's sequential engine and CGAL's Delaunay_triangulation_3 on the same points, in the same
-// run: seconds (median of --repeat runs), tetrahedra, and the machine.
-// Usage: cgal_compare INPUT [--seed S] [--repeat R]
+// dtlab and CGAL's Delaunay_triangulation_3 on the same points, in one run: each engine runs in a
+// child process of its own (fork), so that each has its own peak memory, in interleaved rounds;
+// the table gives medians. Usage:
+//   cgal_compare INPUT [--seed S] [--repeat R] [--threads T] [--methods LIST] [--no-dag]
+// INPUT is a generator spec (uniform:1000000) or a point file. With --threads T > 1 the parallel
+// methods in LIST (default optimistic-detect) run in walk mode at T threads, and CGAL's parallel
+// mode (TBB) at T threads when this build has it.
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#ifdef DTLAB_HAS_CGAL_TBB
+#include <tbb/global_control.h>
+#endif
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -16,26 +28,138 @@
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/point_readers.hpp"
 
+namespace {
+
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using dtlab::predicates::Point3;
+
+struct Sample {
+  double seconds = 0;
+  double tetrahedra = 0;
+  double peak_bytes = 0;
+};
+
+struct Engine {
+  std::string name;
+  std::function<Sample(const std::vector<Point3>&)> run;
+  std::vector<Sample> samples;
+};
+
+double peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) * 1024.0;
+}
+
+// Runs `engine` in a child process; its sample comes back through a pipe.
+bool run_isolated(const Engine& engine, const std::vector<Point3>& points, Sample& out) {
+  int fds[2];
+  if (pipe(fds) != 0) return false;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    Sample s{};
+    try {
+      s = engine.run(points);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", engine.name.c_str(), e.what());
+      _exit(1);
+    }
+    s.peak_bytes = peak_rss_bytes();
+    const bool written = write(fds[1], &s, sizeof s) == static_cast<ssize_t>(sizeof s);
+    _exit(written ? 0 : 1);
+  }
+  close(fds[1]);
+  const bool read_all = read(fds[0], &out, sizeof out) == static_cast<ssize_t>(sizeof out);
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return read_all && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
+  return v.empty() ? 0.0 : v[v.size() / 2];
 }
+
+Sample run_dtlab(const std::vector<Point3>& points, dtlab::engine::Location location,
+                 dtlab::engine::Method method, int threads, std::uint64_t seed) {
+  dtlab::engine::TriangulateOptions options;
+  options.seed = seed;
+  options.location = location;
+  options.method = method;
+  options.threads = threads;
+  if (method != dtlab::engine::Method::Sequential) {
+    options.distribution = dtlab::engine::Distribution::Blocks;
+  }
+  const auto result = dtlab::engine::triangulate(points, options);
+  return {result.stats.seconds.total, static_cast<double>(result.tetrahedra.size()), 0};
+}
+
+template <class Tds>
+Sample run_cgal(const std::vector<Point3>& points, typename Tds::Concurrency_tag* /*tag*/,
+                int threads) {
+  using Dt = CGAL::Delaunay_triangulation_3<Epick, Tds>;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<Epick::Point_3> cgal_points;
+  cgal_points.reserve(points.size());
+  for (const auto& p : points) cgal_points.emplace_back(p.x, p.y, p.z);
+  std::size_t cells = 0;
+  if constexpr (std::is_same_v<typename Tds::Concurrency_tag, CGAL::Sequential_tag>) {
+    (void)threads;
+    const Dt dt(cgal_points.begin(), cgal_points.end());
+    cells = dt.number_of_finite_cells();
+  } else {
+#ifdef DTLAB_HAS_CGAL_TBB
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(threads));
+    // The lock grid over the points' box, as CGAL's documentation builds it.
+    CGAL::Bbox_3 box;
+    for (const auto& p : cgal_points) box += p.bbox();
+    typename Dt::Lock_data_structure locking(box, 50);
+    const Dt dt(cgal_points.begin(), cgal_points.end(), &locking);
+    cells = dt.number_of_finite_cells();
+#endif
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return {seconds, static_cast<double>(cells), 0};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: cgal_compare INPUT [--seed S] [--repeat R]\n");
+    std::fprintf(stderr,
+                 "usage: cgal_compare INPUT [--seed S] [--repeat R] [--threads T] "
+                 "[--methods LIST] [--no-dag]\n");
     return 2;
   }
   const std::string input = argv[1];
   std::uint64_t seed = 1;
   int repeat = 3;
-  for (int i = 2; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--seed") == 0) seed = std::stoull(argv[i + 1]);
-    if (std::strcmp(argv[i], "--repeat") == 0) repeat = std::stoi(argv[i + 1]);
+  int threads = 1;
+  bool dag = true;
+  std::string methods = "optimistic-detect";
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--seed" && has_value) {
+      seed = std::stoull(argv[++i]);
+    } else if (arg == "--repeat" && has_value) {
+      repeat = std::stoi(argv[++i]);
+    } else if (arg == "--threads" && has_value) {
+      threads = std::stoi(argv[++i]);
+    } else if (arg == "--methods" && has_value) {
+      methods = argv[++i];
+    } else if (arg == "--no-dag") {
+      dag = false;
+    } else {
+      std::fprintf(stderr, "cgal_compare: unknown argument %s\n", arg.c_str());
+      return 2;
+    }
   }
-  std::vector<dtlab::predicates::Point3> points;
+  std::vector<Point3> points;
   std::string family;
   std::int64_t n = 0;
   if (dtlab::generators::parse_spec(input, family, n)) {
@@ -43,43 +167,98 @@ int main(int argc, char** argv) {
   } else {
     points = dtlab::io::read_points(input);
   }
-  std::vector<double> ours;
-  std::vector<double> theirs;
-  std::size_t our_tets = 0;
-  std::size_t their_tets = 0;
-  dtlab::engine::TriangulationStats last;
-  for (int r = 0; r < repeat; ++r) {
-    dtlab::engine::TriangulateOptions options;
-    options.seed = seed;
-    const auto result = dtlab::engine::triangulate(points, options);
-    ours.push_back(result.stats.seconds.total);
-    our_tets = result.tetrahedra.size();
-    last = result.stats;
 
-    std::vector<Epick::Point_3> cgal_points;
-    cgal_points.reserve(points.size());
-    const auto t0 = std::chrono::steady_clock::now();
-    for (const auto& p : points) cgal_points.emplace_back(p.x, p.y, p.z);
-    CGAL::Delaunay_triangulation_3<Epick> dt(cgal_points.begin(), cgal_points.end());
-    theirs.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    their_tets = dt.number_of_finite_cells();
+  using dtlab::engine::Location;
+  using dtlab::engine::Method;
+  std::vector<Engine> engines;
+  auto add = [&](std::string name, std::function<Sample(const std::vector<Point3>&)> run) {
+    engines.push_back(Engine{std::move(name), std::move(run), {}});
+  };
+  add("dtlab walk, sequential",
+      [&](const auto& p) { return run_dtlab(p, Location::Walk, Method::Sequential, 1, seed); });
+  if (dag) {
+    add("dtlab DAG, sequential",
+        [&](const auto& p) { return run_dtlab(p, Location::Dag, Method::Sequential, 1, seed); });
   }
-  std::printf("input %s, %zu points, seed %llu, %d repeats, %u hardware threads\n", input.c_str(),
-              points.size(), static_cast<unsigned long long>(seed), repeat,
+  add("CGAL, sequential", [](const auto& p) {
+    return run_cgal<CGAL::Triangulation_data_structure_3<
+        CGAL::Triangulation_vertex_base_3<Epick>, CGAL::Delaunay_triangulation_cell_base_3<Epick>,
+        CGAL::Sequential_tag>>(p, nullptr, 1);
+  });
+  if (threads > 1) {
+    std::stringstream list(methods);
+    std::string name;
+    while (std::getline(list, name, ',')) {
+      Method method = Method::OptimisticDetect;
+      bool known = false;
+      for (const Method m : {Method::Pessimistic, Method::OptimisticDetect,
+                             Method::OptimisticPrevent, Method::Burglary, Method::Batch}) {
+        if (name == dtlab::engine::to_string(m)) {
+          method = m;
+          known = true;
+        }
+      }
+      if (!known) {
+        std::fprintf(stderr, "cgal_compare: unknown method %s\n", name.c_str());
+        return 2;
+      }
+      add("dtlab walk, " + name + " " + std::to_string(threads) + "t", [&, method](const auto& p) {
+        return run_dtlab(p, Location::Walk, method, threads, seed);
+      });
+    }
+#ifdef DTLAB_HAS_CGAL_TBB
+    add("CGAL, parallel (TBB) " + std::to_string(threads) + "t", [&](const auto& p) {
+      return run_cgal<CGAL::Triangulation_data_structure_3<
+          CGAL::Triangulation_vertex_base_3<Epick>, CGAL::Delaunay_triangulation_cell_base_3<Epick>,
+          CGAL::Parallel_tag>>(p, nullptr, threads);
+    });
+#endif
+  }
+
+  const double baseline = peak_rss_bytes();  // this process: the input alone
+  for (int r = 0; r < repeat; ++r) {
+    for (Engine& e : engines) {
+      Sample s;
+      if (!run_isolated(e, points, s)) {
+        std::fprintf(stderr, "cgal_compare: %s failed\n", e.name.c_str());
+        return 1;
+      }
+      e.samples.push_back(s);
+    }
+  }
+
+  std::printf("input %s, %zu points, seed %llu, %d interleaved rounds, %u hardware threads\n",
+              input.c_str(), points.size(), static_cast<unsigned long long>(seed), repeat,
               std::thread::hardware_concurrency());
-  std::printf("%-34s %10s %12s\n", "engine", "median s", "tetrahedra");
-  std::printf("%-34s %10.3f %12zu\n", "dtlab sequential (adaptive, DAG)", median(ours), our_tets);
-  std::printf("%-34s %10.3f %12zu\n", "CGAL Delaunay_triangulation_3", median(theirs), their_tets);
-  std::printf("ratio dtlab / CGAL: %.2f\n", median(ours) / median(theirs));
   std::printf(
-      "dtlab phases (last run): location %.3f, subdivision %.3f, legalization %.3f, other %.3f s; "
-      "flips S23 %llu S32 %llu S22 %llu S44 %llu; DAG nodes %llu; peak RSS %.0f MiB\n",
-      last.seconds.location, last.seconds.subdivision, last.seconds.legalization,
-      last.seconds.other, static_cast<unsigned long long>(last.flips.s23),
-      static_cast<unsigned long long>(last.flips.s32),
-      static_cast<unsigned long long>(last.flips.s22),
-      static_cast<unsigned long long>(last.flips.s44),
-      static_cast<unsigned long long>(last.dag_nodes),
-      static_cast<double>(last.peak_rss_bytes) / 1048576.0);
+      "times and memory are medians; each run in its own process (peak RSS includes the "
+      "input, %.0f MiB before any run)\n",
+      baseline / 1048576.0);
+  std::printf("%-36s %9s %9s %12s %10s %9s %12s\n", "engine", "median s", "min s", "Mpoints/s",
+              "x CGAL", "peak MiB", "bytes/point");
+  double cgal = 0;
+  for (const Engine& e : engines) {
+    if (e.name == "CGAL, sequential") {
+      std::vector<double> s;
+      for (const Sample& x : e.samples) s.push_back(x.seconds);
+      cgal = median(s);
+    }
+  }
+  for (const Engine& e : engines) {
+    std::vector<double> s;
+    std::vector<double> mem;
+    for (const Sample& x : e.samples) {
+      s.push_back(x.seconds);
+      mem.push_back(x.peak_bytes);
+    }
+    const double t = median(s);
+    const double m = median(mem);
+    std::printf("%-36s %9.3f %9.3f %12.3f %10.2f %9.0f %12.0f\n", e.name.c_str(), t,
+                *std::min_element(s.begin(), s.end()), static_cast<double>(points.size()) / t / 1e6,
+                t / cgal, m / 1048576.0, m / static_cast<double>(points.size()));
+  }
+  std::printf("tetrahedra:");
+  for (const Engine& e : engines) std::printf(" %.0f", e.samples.back().tetrahedra);
+  std::printf("\n");
   return 0;
 }

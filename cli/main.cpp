@@ -76,8 +76,12 @@ int main(int argc, char** argv) {
                 "they leave is reported) and --repair=rebuild (the same, then a sequential "
                 "rebuild as an explicit, reported last resort)")
       ->check(CLI::IsMember({"splay", "flips", "rebuild"}));
-  std::string location = "dag";
-  tri->add_option("--location", location, "point location (dag)")->check(CLI::IsMember({"dag"}));
+  const std::map<std::string, dtlab::engine::Location> locations{
+      {"dag", dtlab::engine::Location::Dag}, {"walk", dtlab::engine::Location::Walk}};
+  tri->add_option("--location", targs.options.location,
+                  "point location: dag (the paper's history DAG, random order) or walk (BRIO + "
+                  "Hilbert order, visibility walk, slots reused)")
+      ->transform(CLI::CheckedTransformer(locations, CLI::ignore_case));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
       ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
   tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed");

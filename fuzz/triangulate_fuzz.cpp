@@ -1,7 +1,7 @@
 // bytes -> point set -> triangulate with adaptive predicates -> must validate (or be refused with
 // a TriangulationError when it has no tetrahedralization: decided by CGAL's dimension,
-// tests/cgal_reference.hpp, not by the engine's own code); the filtered kernel must give the same
-// tetrahedra (the perturbed Delaunay tetrahedralization is unique).
+// tests/cgal_reference.hpp, not by the engine's own code); the filtered kernel, and the walk mode,
+// must give the same tetrahedra (the perturbed Delaunay tetrahedralization is unique).
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -31,6 +31,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     };
     if (sorted(dtlab::engine::triangulate(points, filtered).tetrahedra) !=
         sorted(result.tetrahedra)) {
+      std::abort();
+    }
+    dtlab::engine::TriangulateOptions walk = options;
+    walk.location = dtlab::engine::Location::Walk;
+    if (sorted(dtlab::engine::triangulate(points, walk).tetrahedra) != sorted(result.tetrahedra)) {
       std::abort();
     }
   } catch (const dtlab::engine::TriangulationError&) {

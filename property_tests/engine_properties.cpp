@@ -26,11 +26,13 @@ struct Configuration {
   Method method;
   int threads;
   engine::Repair repair = engine::Repair::None;
+  engine::Location location = engine::Location::Dag;
 };
 
 std::string name(const Configuration& c) {
   return std::string(engine::to_string(c.kernel)) + "/" + engine::to_string(c.method) + "/" +
-         std::to_string(c.threads) + "/repair " + engine::to_string(c.repair);
+         std::to_string(c.threads) + "/repair " + engine::to_string(c.repair) + "/" +
+         engine::to_string(c.location);
 }
 
 // kernel x method x threads. The parallel methods run with random delays while locks are held.
@@ -53,6 +55,21 @@ const std::vector<Configuration>& configurations() {
     // The fast kernel, then star splaying: must end in the Delaunay mesh like an exact kernel.
     v.push_back({KernelKind::Fast, Method::Sequential, 1, engine::Repair::Splay});
     v.push_back({KernelKind::Fast, Method::OptimisticDetect, 2, engine::Repair::Splay});
+    // The walk mode: every exact kernel sequentially, every method on 2 threads (burglary with
+    // star splaying), and the fast kernel alone and repaired.
+    for (const KernelKind k : {KernelKind::Adaptive, KernelKind::Filtered, KernelKind::Exact}) {
+      v.push_back({k, Method::Sequential, 1, engine::Repair::None, engine::Location::Walk});
+    }
+    for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
+                           Method::Batch}) {
+      v.push_back({KernelKind::Adaptive, m, 2, engine::Repair::None, engine::Location::Walk});
+    }
+    v.push_back(
+        {KernelKind::Adaptive, Method::Burglary, 2, engine::Repair::Splay, engine::Location::Walk});
+    v.push_back(
+        {KernelKind::Fast, Method::Sequential, 1, engine::Repair::None, engine::Location::Walk});
+    v.push_back(
+        {KernelKind::Fast, Method::Sequential, 1, engine::Repair::Splay, engine::Location::Walk});
     return v;
   }();
   return all;
@@ -99,6 +116,7 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   options.threads = config.threads;
   options.stress = config.method != Method::Sequential;
   options.repair = config.repair;
+  options.location = config.location;
   if (!tetrahedralizable) {
     RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
     return;

@@ -78,7 +78,7 @@ TEST(CgalReference, DimensionAndDuplicates) {
 
 // Every family, two sizes, three seeds (the seed also drives dtlab's insertion order). The
 // seedless families (grid, lattice) run once per size.
-TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
+void every_family_against_cgal(engine::Location location) {
   int compared = 0;
   std::vector<std::string> refused;
   for (const std::string& family : generators::families()) {
@@ -90,6 +90,7 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
         previous = pts;
         engine::TriangulateOptions options;
         options.seed = seed;
+        options.location = location;
         const std::string what = family + ":" + std::to_string(n) + " seed " + std::to_string(seed);
         if (cgal_dimension(pts) < 3) {
           EXPECT_THROW(engine::triangulate(pts, options), engine::TriangulationError) << what;
@@ -110,6 +111,15 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
       compared, refused.size());
   for (const auto& r : refused) std::printf("  refused: %s\n", r.c_str());
   EXPECT_GT(compared, 0);
+}
+
+TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
+  every_family_against_cgal(engine::Location::Dag);
+}
+
+// The walk mode (BRIO and Hilbert order, visibility walk, slots reused) on the same sets.
+TEST(CgalOracle, EveryFamilyIdenticalTetrahedraInWalkMode) {
+  every_family_against_cgal(engine::Location::Walk);
 }
 
 // Star splaying (issue 12) against CGAL after each of its three uses, on every family with a

@@ -80,6 +80,34 @@ TEST(ParallelMethods, ManyThreadsStayValidOnHardFamilies) {
   }
 }
 
+// Walk mode: every method walks lock-free over a mesh that other threads change (a walk that
+// ends in a dead tetrahedron descends its DAG children; one that fails falls back to the DAG),
+// and every method but burglary gives the unique tetrahedralization; burglary, repaired by star
+// splaying, gives it too.
+TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
+  for (const std::string family : {"uniform", "grid", "sphere", "duplicates"}) {
+    const auto points = generators::generate(family, 800, 8).points;
+    const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+    for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
+                           Method::Batch, Method::Burglary}) {
+      for (const int threads : {2, 4}) {
+        engine::TriangulateOptions options;
+        options.location = engine::Location::Walk;
+        options.method = m;
+        options.threads = threads;
+        options.stress = true;
+        options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
+        if (m == Method::Burglary) options.repair = engine::Repair::Splay;
+        const auto result = engine::triangulate(points, options);
+        const std::string what =
+            family + " " + engine::to_string(m) + " " + std::to_string(threads);
+        EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
+        EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+      }
+    }
+  }
+}
+
 // Burglary may lose the Delaunay property, never the mesh: after the run the mesh is sound (the
 // post-check's validation says so, and the test validates again). The repair's flips are judged
 // by themselves, without the rebuild: on grid data, where they never got stuck (0 of 9 runs of

@@ -50,14 +50,21 @@ class IncrementalDelaunay {
         mesh_(*owned_),
         options_(options),
         stats_(stats),
-        sync_(&own_sync_) {
+        sync_(&own_sync_),
+        walk_(options.location == Location::Walk),
+        recycle_(walk_) {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
   }
 
   // One inserting thread of a parallel method, on a shared mesh.
   IncrementalDelaunay(SharedMesh& mesh, const TriangulateOptions& options,
                       TriangulationStats& stats, Sync& sync)
-      : mesh_(mesh), options_(options), stats_(stats), sync_(&sync) {}
+      : mesh_(mesh),
+        options_(options),
+        stats_(stats),
+        sync_(&sync),
+        walk_(options.location == Location::Walk),
+        recycle_(false) {}
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {
@@ -99,6 +106,20 @@ class IncrementalDelaunay {
   }
 
   Outcome insert(VertexId p) {
+    const Outcome outcome = insert_point(p);
+    if (outcome == Outcome::Inserted && !scratch_created_.empty()) {
+      walk_start_ = scratch_created_.back();  // alive now: the next walk starts here
+    }
+    if (recycle_) {
+      // The slots of the tetrahedra this insertion killed are free from now on.
+      free_slots_.insert(free_slots_.end(), retired_.begin(), retired_.end());
+      retired_.clear();
+    }
+    return outcome;
+  }
+
+ private:
+  Outcome insert_point(VertexId p) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     std::array<int, 4> o{};
@@ -149,6 +170,7 @@ class IncrementalDelaunay {
     return legal;
   }
 
+ public:
   // Continues a location that another thread started (the batch method's hint): descends from
   // `start`, which must be a node that contains p, then inserts.
   void set_location_hint(TetId hint) { hint_ = hint; }
@@ -169,6 +191,7 @@ class IncrementalDelaunay {
     const auto t0 = Clock::now();
     std::array<int, 4> o{};
     const TetId t = locate(p, o);
+    if (t != kNoTet) walk_start_ = t;  // the next point is near on the curve
     stats_.seconds.location += std::chrono::duration<double>(Clock::now() - t0).count();
     return t;
   }
@@ -184,6 +207,9 @@ class IncrementalDelaunay {
   [[nodiscard]] std::uint64_t dag_nodes() const { return mesh_.tets.size(); }
   [[nodiscard]] std::uint64_t predicate_calls() const { return predicate_calls_; }
   [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
+  [[nodiscard]] std::uint64_t walk_fallbacks() const { return walk_fallbacks_; }
+  // Slots in use: the DAG's nodes, or (recycling) the live tetrahedra and the free slots.
+  [[nodiscard]] std::uint64_t store_slots() const { return mesh_.tets.size(); }
 
  private:
   // Only finite vertices are looked up: the infinite vertex never reaches a point lookup.
@@ -230,6 +256,7 @@ class IncrementalDelaunay {
   // contains p. With other threads writing, a node can be retired by a rollback under the reader
   // (dead, no children) or a leaf can turn out not to contain p: the descent then restarts.
   TetId locate(VertexId p, std::array<int, 4>& o) {
+    if (walk_) return locate_by_walk(p, o);
     TetId start = hint_;
     hint_ = kNoTet;
     for (int attempt = 0; attempt < 64; ++attempt) {
@@ -241,9 +268,125 @@ class IncrementalDelaunay {
     return kNoTet;
   }
 
-  TetId descend(VertexId p, std::array<int, 4>& o, TetId start, bool& retry) {
+  // Walk mode. The owning (sequential) engine walks from the tetrahedron its last insertion
+  // created, which is alive, over live tetrahedra only: the walk's answer is final. On a shared
+  // mesh other threads change the tetrahedra under the walk; no slot is reused there and every
+  // dead tetrahedron keeps its vertices, its last neighbours and its DAG children, so the walk
+  // only ever reads real tetrahedra, and where it ends in a dead one the DAG below that one is
+  // descended to the live leaf that contains p (and checked there, as in the DAG mode). A walk
+  // that fails on a shared mesh (a rollback retired the tetrahedron it ended in, or it ran out of
+  // steps in a part that was changing) falls back to the DAG from the roots.
+  TetId locate_by_walk(VertexId p, std::array<int, 4>& o) {
+    TetId start = hint_ != kNoTet ? hint_ : walk_start_;
+    hint_ = kNoTet;
+    if (recycle_) {
+      if (start == kNoTet || !mesh_.tets[start].alive.load(std::memory_order_relaxed)) {
+        start = any_live_tetrahedron();
+      }
+      const TetId t = walk(p, o, start);
+      if (t != kNoTet) return t;
+      ++walk_fallbacks_;  // an inexact kernel's cycle: test every live tetrahedron
+      return scan_for(p, o);
+    }
+    if (start == kNoTet) start = mesh_.roots.front();
+    for (int attempt = 0; attempt < 64; ++attempt) {
+      TetId reached = walk(p, o, start);
+      bool retry = false;
+      if (reached != kNoTet) {
+        const bool alive = mesh_.tets[reached].alive.load(std::memory_order_acquire);
+        const TetId t = descend(p, o, reached, retry, alive);
+        if (!retry && t != kNoTet) return t;
+      }
+      ++walk_fallbacks_;
+      retry = false;
+      const TetId t = descend(p, o, kNoTet, retry, false);
+      if (!retry) return t;
+      start = mesh_.roots.front();
+    }
+    return kNoTet;
+  }
+
+  // Remembering stochastic visibility walk (Devillers, Pion and Teillaud 2002): from t, cross a
+  // face that has p strictly on its far side, trying the faces from a random one on and never
+  // the face just crossed (p lies strictly on this side of it). On a Delaunay tetrahedralization
+  // with exact predicates no tetrahedron is visited twice, so a walk longer than the store is an
+  // inexact kernel's cycle or a shared mesh changing under it: kNoTet. Ends with `o` the four
+  // orientations of p against the tetrahedron returned.
+  TetId walk(VertexId p, std::array<int, 4>& o, TetId t) {
+    TetId previous = kNoTet;
+    const std::uint64_t limit =
+        std::min<std::uint64_t>(options_.max_location_steps, mesh_.tets.size() + 64);
+    for (std::uint64_t step = 0; step < limit; ++step) {
+      const Tet& tet = mesh_.tets[t];
+      walk_random_ ^= walk_random_ << 13;
+      walk_random_ ^= walk_random_ >> 7;
+      walk_random_ ^= walk_random_ << 17;
+      const auto first = static_cast<int>(walk_random_ >> 62);
+      int skipped = -1;
+      TetId next = kNoTet;
+      for (int k = 0; k < 4; ++k) {
+        const int f = (first + k) & 3;
+        const TetId across = ref_tet(load_neighbor(tet, f));
+        if (across == previous && skipped < 0) {
+          skipped = f;
+          continue;
+        }
+        o[static_cast<std::size_t>(f)] = orient_replaced(tet, f, p);
+        if (o[static_cast<std::size_t>(f)] < 0) {
+          next = across;
+          break;
+        }
+      }
+      if (next == kNoTet) {
+        location_steps_ += step;
+        // The face skipped is tested too: subdivide needs the exact four signs.
+        if (skipped >= 0) {
+          o[static_cast<std::size_t>(skipped)] = orient_replaced(tet, skipped, p);
+          if (o[static_cast<std::size_t>(skipped)] < 0) {
+            previous = kNoTet;
+            t = ref_tet(load_neighbor(tet, skipped));
+            continue;
+          }
+        }
+        return t;
+      }
+      previous = t;
+      t = next;
+    }
+    location_steps_ += limit;
+    return kNoTet;
+  }
+
+  // The owning engine's last resorts: some live tetrahedron, and the live tetrahedron that
+  // contains p by testing every one.
+  TetId any_live_tetrahedron() const {
+    for (TetId t = static_cast<TetId>(mesh_.tets.size()); t-- > 0;) {
+      if (mesh_.tets[t].alive.load(std::memory_order_relaxed)) return t;
+    }
+    return kNoTet;
+  }
+  TetId scan_for(VertexId p, std::array<int, 4>& o) {
+    for (TetId t = 0; t < mesh_.tets.size(); ++t) {
+      if (mesh_.tets[t].alive.load(std::memory_order_relaxed) && contains(t, p, o)) return t;
+    }
+    return kNoTet;
+  }
+
+  // Neighbour references are read by walking threads that hold no lock, so they are written with
+  // release (after the tetrahedron they name is complete) and read with acquire.
+  static FaceRef load_neighbor(const Tet& tet, int f) {
+    return std::atomic_ref<FaceRef>(const_cast<FaceRef&>(tet.neighbor[static_cast<std::size_t>(f)]))
+        .load(std::memory_order_acquire);
+  }
+  static void store_neighbor(Tet& tet, int f, FaceRef r) {
+    std::atomic_ref<FaceRef>(tet.neighbor[static_cast<std::size_t>(f)])
+        .store(r, std::memory_order_release);
+  }
+
+  TetId descend(VertexId p, std::array<int, 4>& o, TetId start, bool& retry,
+                bool start_tested = false) {
     TetId t = start;
-    bool tested = false;  // whether `o` holds t's orientations
+    bool tested = start_tested;  // whether `o` holds t's orientations
     if (t == kNoTet) {
       for (const TetId r : mesh_.roots) {
         if (contains(r, p, o)) {
@@ -301,6 +444,9 @@ class IncrementalDelaunay {
     scratch_source_.push_back({t, position});
   }
 
+  // What replace() did: Impossible when the new tetrahedra do not close up (nothing written).
+  enum class Replaced { Done, Impossible, GaveUp };
+
   // 1->4 inside, 2->6 on a face, k->2k on an edge; a point on a vertex is a duplicate.
   Outcome subdivide(TetId t, VertexId p, const std::array<int, 4>& o) {
     scratch_old_.clear();
@@ -311,7 +457,9 @@ class IncrementalDelaunay {
     if (zeros == 0) {
       scratch_old_.push_back(t);
       for (int i = 0; i < 4; ++i) push_replaced(t, i, p, 0);
-    } else if (zeros == 1) {
+      return finish_split(replace_known(t, kNoTet, kNoTet, -1));
+    }
+    if (zeros == 1) {
       const int i0 = static_cast<int>(std::find(o.begin(), o.end(), 0) - o.begin());
       const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(i0)];
       const TetId t2 = ref_tet(across);
@@ -349,7 +497,10 @@ class IncrementalDelaunay {
     } else {
       return Outcome::Abandoned;
     }
-    const Replaced done = replace();
+    return finish_split(replace());
+  }
+
+  Outcome finish_split(Replaced done) {
     if (done == Replaced::GaveUp) return Outcome::GaveUp;
     if (done == Replaced::Impossible) return Outcome::Abandoned;
     stack_.assign(scratch_created_.begin(), scratch_created_.end());
@@ -539,7 +690,7 @@ class IncrementalDelaunay {
     for (int m = 0; m < 4; ++m) {
       if (m != ip) push_replaced(t, m, y, -1);
     }
-    const Flip result = finish_flip();
+    const Flip result = finish_flip(replace_known(t, t2, kNoTet, ip));
     if (result == Flip::Done) ++stats_.flips.s23;
     return result;
   }
@@ -557,7 +708,7 @@ class IncrementalDelaunay {
     for (int j = 0; j < 4; ++j) {
       if (j != ip && j != m) push_replaced(t, j, y, -1);
     }
-    const Flip result = finish_flip();
+    const Flip result = finish_flip(replace_known(t, t2, t3, ip));
     if (result == Flip::Done) ++stats_.flips.s32;
     return result;
   }
@@ -594,7 +745,7 @@ class IncrementalDelaunay {
     push_replaced(t, edge[1], y, -1);
     push_replaced(t3, e0, y, -1);
     push_replaced(t3, e1, y, -1);
-    const Flip result = finish_flip();
+    const Flip result = finish_flip(replace());
     if (result != Flip::Done) return result;
     if (vm == kInfiniteVertex || w == kInfiniteVertex) {
       ++stats_.flips.s22;
@@ -612,13 +763,30 @@ class IncrementalDelaunay {
   }
   // NotApplied when the flip's faces do not close up (inexact kernel only); the mesh is then
   // unchanged.
-  Flip finish_flip() {
-    const Replaced done = replace();
+  Flip finish_flip(Replaced done) {
     if (done == Replaced::GaveUp) return Flip::GaveUp;
     if (done == Replaced::Impossible) return Flip::NotApplied;
     stack_.insert(stack_.end(), scratch_created_.begin(), scratch_created_.end());
     return Flip::Done;
   }
+
+  // A free slot: a recycled one, else the next of this engine's run of fresh slots.
+  TetId allocate_slot() {
+    if (!free_slots_.empty()) {
+      const TetId id = free_slots_.back();
+      free_slots_.pop_back();
+      return id;
+    }
+    if (run_next_ == run_end_) {
+      std::size_t count = 0;
+      run_next_ = mesh_.tets.allocate_run(kSlotRun, count);
+      run_end_ = run_next_ + static_cast<TetId>(count);
+    }
+    return run_next_++;
+  }
+  // 64 slots of 56 bytes: a run spans whole cache lines, and what a run leaves unused at the end
+  // (dead, never alive) is at most 63 slots per thread.
+  static constexpr std::size_t kSlotRun = 64;
 
   // A face's vertex set as two integers (sorted ids): cheap to compare.
   struct FaceKey {
@@ -654,8 +822,6 @@ class IncrementalDelaunay {
   // Every face is matched before anything is written: when the new tetrahedra do not close up
   // (only possible with an inexact kernel's contradictory signs) nothing changes and the result
   // is false. The new ids land in scratch_created_.
-  enum class Replaced { Done, Impossible, GaveUp };
-
   Replaced replace() {
     auto is_old = [&](TetId t) {
       return std::find(scratch_old_.begin(), scratch_old_.end(), t) != scratch_old_.end();
@@ -701,7 +867,82 @@ class IncrementalDelaunay {
       }
     }
     if (!open_faces_.empty()) return Replaced::Impossible;
+    return commit_replacement();
+  }
 
+  // The faces of the three most frequent replacements follow from the adjacency alone, without
+  // matching keys: 1->4 (scratch_new_[j] is t with vertex j replaced), S23 and S32 (the new
+  // tetrahedra are t with one vertex replaced by y; `t2` lies across t's face ip, `t3` (S32 only)
+  // across t's face m). Two new tetrahedra made from t by replacing positions a and b share the
+  // face opposite b in the first and opposite a in the second; a new tetrahedron's face at its
+  // own replaced position is t's face there; its faces opposite p and opposite t[m] belong to
+  // t2 and t3, found by the vertex they lack. Falls back to the generic matching when the
+  // neighbourhood is not the textbook one (a broken mesh from an inexact kernel).
+  Replaced replace_known(TetId t, TetId t2, TetId t3, int ip) {
+    const std::size_t n = scratch_new_.size();
+    matched_.assign(4 * n, FaceMatch{0, false, false});
+    bool textbook = true;
+    auto outside = [&](std::size_t j, int f, FaceRef ref) {
+      const TetId other = ref_tet(ref);
+      if (other == t || other == t2 || other == t3) textbook = false;
+      matched_[4 * j + static_cast<std::size_t>(f)] = {ref, false, true};
+    };
+    auto across_from = [&](TetId old, VertexId lacking) {
+      const int i = mesh_.tets[old].index_of(lacking);
+      if (i < 0) {
+        textbook = false;
+        return FaceRef{0};
+      }
+      return mesh_.tets[old].neighbor[static_cast<std::size_t>(i)];
+    };
+    const Tet& tet = mesh_.tets[t];
+    // The vertex put in must be new to t, and the old tetrahedra must be glued to each other
+    // both ways across their shared faces (t2 to t across the face opposite y; for S32, t2 and
+    // t3 across the face opposite t[m] in t2 and opposite p in t3). A broken mesh from an
+    // inexact kernel can fail either; the generic matching then decides.
+    const int first = scratch_source_[0].second;
+    const VertexId put = scratch_new_[0][static_cast<std::size_t>(first)];
+    if (tet.index_of(put) >= 0) textbook = false;
+    if (t2 != kNoTet) {
+      const Tet& second = mesh_.tets[t2];
+      const int y_at = second.index_of(put);
+      if (y_at < 0 || second.neighbor[static_cast<std::size_t>(y_at)] != face_ref(t, ip)) {
+        textbook = false;
+      }
+      if (t3 != kNoTet && textbook) {
+        const int m = 6 - ip - scratch_source_[0].second - scratch_source_[1].second;
+        const int m_at = second.index_of(tet.vertex[static_cast<std::size_t>(m)]);
+        const int p_at = mesh_.tets[t3].index_of(tet.vertex[static_cast<std::size_t>(ip)]);
+        if (m_at < 0 || p_at < 0 ||
+            second.neighbor[static_cast<std::size_t>(m_at)] != face_ref(t3, p_at)) {
+          textbook = false;
+        }
+      }
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+      const int a = scratch_source_[j].second;
+      outside(j, a, tet.neighbor[static_cast<std::size_t>(a)]);
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const int b = scratch_source_[k].second;
+        matched_[4 * j + static_cast<std::size_t>(b)] = {static_cast<FaceRef>(4 * k + a), true,
+                                                         true};
+        matched_[4 * k + static_cast<std::size_t>(a)] = {static_cast<FaceRef>(4 * j + b), true,
+                                                         true};
+      }
+      if (t2 == kNoTet) continue;
+      const VertexId lost = tet.vertex[static_cast<std::size_t>(a)];
+      outside(j, ip, across_from(t2, lost));
+      if (t3 == kNoTet) continue;
+      for (int f = 0; f < 4; ++f) {  // the face left: opposite t[m]
+        if (!matched_[4 * j + static_cast<std::size_t>(f)].set)
+          outside(j, f, across_from(t3, lost));
+      }
+    }
+    if (!textbook) return replace();
+    return commit_replacement();
+  }
+
+  Replaced commit_replacement() {
     // Every tetrahedron written below is locked first: the outside neighbours get new back
     // references (the old ones are locked already), and the undo log sees each before its first
     // write.
@@ -717,7 +958,7 @@ class IncrementalDelaunay {
 
     scratch_created_.clear();
     for (const Quad& q : scratch_new_) {
-      const TetId id = mesh_.tets.allocate();
+      const TetId id = allocate_slot();
       Tet& tet = mesh_.tets[id];
       tet.vertex = q;
       for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
@@ -729,18 +970,23 @@ class IncrementalDelaunay {
       for (int f = 0; f < 4; ++f) {
         const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
         if (m.is_new) {
-          tet.neighbor[static_cast<std::size_t>(f)] =
-              face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref));
+          store_neighbor(tet, f, face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref)));
         } else {
-          tet.neighbor[static_cast<std::size_t>(f)] = m.ref;
-          mesh_.tets[ref_tet(m.ref)].neighbor[static_cast<std::size_t>(ref_face(m.ref))] =
-              face_ref(scratch_created_[j], f);
+          store_neighbor(tet, f, m.ref);
+          store_neighbor(mesh_.tets[ref_tet(m.ref)], ref_face(m.ref),
+                         face_ref(scratch_created_[j], f));
         }
       }
     }
     // History: children first (release), then the old tetrahedra die, then the new ones live.
+    // A recycling engine keeps no history: the old slots are reused after this insertion.
     for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
       Tet& old = mesh_.tets[scratch_old_[r]];
+      if (recycle_) {
+        old.alive.store(false, std::memory_order_relaxed);
+        retired_.push_back(scratch_old_[r]);
+        continue;
+      }
       int slot = 0;
       for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
         if (scratch_parent_[j] == -1 || scratch_parent_[j] == static_cast<int>(r)) {
@@ -763,6 +1009,18 @@ class IncrementalDelaunay {
   NoSync own_sync_;
   Sync* sync_;
   TetId hint_ = kNoTet;
+  // Walk mode: walk_ locates by walking; recycle_ (the owning engine in walk mode) reuses the
+  // slots of dead tetrahedra, which go to retired_ when they die and to free_slots_ when the
+  // insertion that killed them ends (its legalization stack may still name them until then).
+  bool walk_;
+  bool recycle_;
+  TetId walk_start_ = kNoTet;
+  std::uint64_t walk_random_ = (options_.seed * 0x9E3779B97F4A7C15ULL) | 1;  // xorshift state
+  std::uint64_t walk_fallbacks_ = 0;
+  std::vector<TetId> free_slots_;
+  TetId run_next_ = 0;  // this engine's run of fresh slots: [run_next_, run_end_)
+  TetId run_end_ = 0;
+  std::vector<TetId> retired_;
   std::uint64_t predicate_calls_ = 0;
   std::uint64_t location_steps_ = 0;
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)

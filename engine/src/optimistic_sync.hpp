@@ -22,6 +22,7 @@
 
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
+#include "insertion_id_set.hpp"
 #include "shared_mesh.hpp"
 
 namespace dtlab::engine {
@@ -130,6 +131,8 @@ class OptimisticSync {
   // burgled: see resume()).
   bool acquire(TetId t) {
     std::atomic<std::uint32_t>& word = mesh_.tets[t].lock_owner;
+    // Only this thread ever stores self_, so a relaxed load that sees it is exact.
+    if (word.load(std::memory_order_relaxed) == self_) return true;
     bool waited = false;
     std::uint32_t registered_owner = 0;
     for (std::uint64_t spin = 0;; ++spin) {
@@ -196,12 +199,8 @@ class OptimisticSync {
 
   void before_write(TetId t) {
     if (mode_ == Mode::Burglary) return;  // no undo
-    for (const Saved& s : log_) {
-      if (s.tet == t) return;
-    }
-    for (const TetId c : created_) {
-      if (c == t) return;  // retired as a whole on rollback
-    }
+    // Logged once; created tetrahedra are in the set from birth (retired whole on rollback).
+    if (!logged_or_created_.insert(t)) return;
     const Tet& tet = mesh_.tets[t];
     Saved s{t, tet.neighbor, {}, tet.alive.load(std::memory_order_relaxed)};
     for (std::size_t i = 0; i < 4; ++i) s.child[i] = tet.child[i].load(std::memory_order_relaxed);
@@ -213,6 +212,7 @@ class OptimisticSync {
     mesh_.tets[t].lock_owner.store(self_, std::memory_order_relaxed);
     held_.push_back(t);
     created_.push_back(t);
+    if (mode_ != Mode::Burglary) logged_or_created_.insert(t);
   }
 
   // Burglary: t, alive until now, dies by this thread's own write.
@@ -221,6 +221,7 @@ class OptimisticSync {
   }
 
   void commit() {
+    logged_or_created_.clear();
     log_.clear();
     created_.clear();
     own_kills_.clear();
@@ -242,7 +243,9 @@ class OptimisticSync {
     }
     for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
       Tet& tet = mesh_.tets[it->tet];
-      tet.neighbor = it->neighbor;
+      for (std::size_t f = 0; f < 4; ++f) {  // walking threads read these without a lock
+        std::atomic_ref<FaceRef>(tet.neighbor[f]).store(it->neighbor[f], std::memory_order_release);
+      }
       for (std::size_t i = 0; i < 4; ++i)
         tet.child[i].store(it->child[i], std::memory_order_relaxed);
       tet.alive.store(it->alive, std::memory_order_release);
@@ -254,6 +257,7 @@ class OptimisticSync {
     }
     log_.clear();
     created_.clear();
+    logged_or_created_.clear();
     release_all();
   }
 
@@ -413,6 +417,7 @@ class OptimisticSync {
   std::vector<TetId> held_;
   std::vector<TetId> created_;
   std::vector<Saved> log_;
+  InsertionIdSet logged_or_created_;  // the tetrahedra of log_ and created_
   std::vector<TetId> own_kills_;      // burglary: created tetrahedra this thread itself replaced
   std::vector<TetId> suspicious_;     // burglary: marks for the post-check
   std::vector<std::uint32_t> chain_;  // find_cycle's scratch

@@ -17,6 +17,7 @@
 #include "dtlab/predicates/audit.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "incremental_delaunay.hpp"
+#include "insertion_order.hpp"
 #include "optimistic_sync.hpp"
 #include "splay_repair.hpp"
 
@@ -295,13 +296,21 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       static_cast<std::size_t>(threads));
   std::vector<std::uint64_t> predicate_calls(static_cast<std::size_t>(threads), 0);
   std::vector<std::uint64_t> location_steps(static_cast<std::size_t>(threads), 0);
+  std::vector<std::uint64_t> walk_fallbacks(static_cast<std::size_t>(threads), 0);
   std::atomic<std::uint64_t> progress{0};
   std::vector<std::vector<TetId>> suspicious(static_cast<std::size_t>(threads));
   LockTable table(threads);
   std::atomic<std::size_t> shared_index{0};
   const bool dynamic = options.distribution == Distribution::Dynamic;
-  const auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
-                             : distribute(points, order, options.distribution, threads);
+  const bool walk = options.location == Location::Walk;
+  // Walk mode: each thread inserts its share in its own BRIO and Hilbert order (one shared order
+  // for the dynamic distribution).
+  if (walk && dynamic) brio_hilbert_order(points, order);
+  auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
+                       : distribute(points, order, options.distribution, threads);
+  if (walk) {
+    for (auto& part : parts) brio_hilbert_order(points, part);
+  }
   std::mutex global;  // pessimistic: the one critical section
   // A stall is a failure; its limit grows with the work, to a minute at most (an insertion takes
   // micro- to milliseconds, so 10 s without one finishing anywhere is no slow run).
@@ -326,6 +335,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     duplicates[static_cast<std::size_t>(i)] = dt.duplicates();
     predicate_calls[static_cast<std::size_t>(i)] = dt.predicate_calls();
     location_steps[static_cast<std::size_t>(i)] = dt.location_steps();
+    walk_fallbacks[static_cast<std::size_t>(i)] = dt.walk_fallbacks();
   };
 
   auto worker_body = [&](int i) {
@@ -398,8 +408,11 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     int active_locators = locators;
     std::atomic<std::uint64_t> full_waits{0};
     std::uint64_t empty_waits = 0;
-    const auto locator_parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
-                                       : distribute(points, order, options.distribution, locators);
+    auto locator_parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
+                                 : distribute(points, order, options.distribution, locators);
+    if (walk) {
+      for (auto& part : locator_parts) brio_hilbert_order(points, part);
+    }
     std::vector<std::thread> pool;
     std::vector<TriangulationStats> locator_stats(static_cast<std::size_t>(locators));
     for (int i = 0; i < locators; ++i) {
@@ -423,6 +436,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
           // Merged into the run's stats after the join (the descent's seconds are already there).
           locator_stats[index].predicate_calls = dt.predicate_calls();
           locator_stats[index].location_steps = dt.location_steps();
+          locator_stats[index].walk_fallbacks = dt.walk_fallbacks();
         } catch (...) {
           record_error();
         }
@@ -470,6 +484,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       thread_stats[0].seconds.location += ls.seconds.location;
       predicate_calls[0] += ls.predicate_calls;
       location_steps[0] += ls.location_steps;
+      walk_fallbacks[0] += ls.walk_fallbacks;
     }
   };
 
@@ -498,13 +513,15 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     all_duplicates.insert(all_duplicates.end(), duplicates[i].begin(), duplicates[i].end());
     stats.predicate_calls += predicate_calls[i];
     stats.location_steps += location_steps[i];
+    stats.walk_fallbacks += walk_fallbacks[i];
   }
   for (const ThreadStats& t : stats.threads) {
     stats.inserted += t.inserted;
     stats.duplicates += t.duplicates;
     stats.abandoned_insertions += t.abandoned;
   }
-  stats.dag_nodes = mesh.tets.size();
+  stats.dag_nodes = mesh.tets.size();  // on a shared mesh the walk mode keeps the DAG too
+  stats.store_slots = mesh.tets.size();
   if (options.method == Method::Burglary) {
     std::vector<TetId> marks;
     for (const auto& m : suspicious) marks.insert(marks.end(), m.begin(), m.end());

@@ -16,6 +16,7 @@
 #include "dtlab/predicates/audit.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "incremental_delaunay.hpp"
+#include "insertion_order.hpp"
 #include "parallel_methods.hpp"
 #include "splay_repair.hpp"
 
@@ -28,14 +29,6 @@ std::uint64_t peak_rss_bytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
-}
-
-std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  generators::detail::Random rng(seed);
-  for (std::size_t i = n; i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
-  return order;
 }
 
 class Progress {
@@ -91,9 +84,11 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
         break;
     }
   }
-  stats.dag_nodes = dt.dag_nodes();
+  stats.store_slots = dt.store_slots();
+  stats.dag_nodes = options.location == Location::Walk ? 0 : dt.store_slots();
   stats.predicate_calls = dt.predicate_calls();
   stats.location_steps = dt.location_steps();
+  stats.walk_fallbacks = dt.walk_fallbacks();
   if (options.repair == Repair::Splay)
     splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, stats.splay);
   return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
@@ -177,8 +172,8 @@ const char* to_string(KernelKind k) {
 const char* to_string(Bounding b) {
   return b == Bounding::Infinite ? "infinite" : "aux-tet";
 }
-const char* to_string(Location) {
-  return "dag";
+const char* to_string(Location l) {
+  return l == Location::Walk ? "walk" : "dag";
 }
 const char* to_string(Method m) {
   switch (m) {
@@ -259,8 +254,12 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     }
   }
 
-  const std::vector<std::uint32_t> order = random_order(input.size(), options.seed);
+  std::vector<std::uint32_t> order = random_order(input.size(), options.seed);
   const SimplexSearch search = find_simplex(input, order);
+  // The walk mode's order (the parallel methods give each thread its own, parallel_methods.cpp).
+  if (options.location == Location::Walk && options.method == Method::Sequential) {
+    brio_hilbert_order(input, order);
+  }
   if (!search.simplex) {
     throw TriangulationError("no tetrahedralization exists: the affine dimension of the " +
                              std::to_string(input.size()) + " input points is " +
@@ -348,6 +347,8 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   j["dag_nodes"] = s.dag_nodes;
   j["predicate_calls"] = s.predicate_calls;
   j["location_steps"] = s.location_steps;
+  j["walk_fallbacks"] = s.walk_fallbacks;
+  j["store_slots"] = s.store_slots;
   j["abandoned_insertions"] = s.abandoned_insertions;
   if (s.hull_tetrahedra_lost >= 0) {
     j["hull_tetrahedra_lost"] = s.hull_tetrahedra_lost;
@@ -355,6 +356,8 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
     j["hull_tetrahedra_lost"] = nullptr;
   }
   j["peak_rss_bytes"] = s.peak_rss_bytes;
+  // The whole process's peak (input, output and the run) per input point.
+  j["bytes_per_point"] = s.points > 0 ? s.peak_rss_bytes / s.points : 0;
   j["scale_exponent"] = s.scale_exponent;
   if (!s.threads.empty()) {
     std::uint64_t waits = 0, deadlocks = 0, stale = 0, give_ups = 0, raises = 0, burglaries = 0,

@@ -10,6 +10,7 @@
 // orient3d(v0, v1, v2, v3) > 0. Face f is the face opposite v[f]; kFaceVertex[f] lists its
 // vertices so that v[f] lies on the negative side (outward orientation). neighbor[f] = 4*t + g
 // names the tetrahedron t across face f and the index g of the same face inside t.
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -109,6 +110,18 @@ class TetStore {
     }
     ensure_block(t >> kBlockBits);
     return static_cast<TetId>(t);
+  }
+  // A run of up to `wanted` consecutive fresh slots, [first, first + count): one atomic step for
+  // many allocations, so that threads do not contend for the counter nor interleave their
+  // records on shared cache lines. Fewer than wanted only at the capacity; none throws.
+  TetId allocate_run(std::size_t wanted, std::size_t& count) {
+    const std::size_t first = size_.fetch_add(wanted, std::memory_order_relaxed);
+    if (first >= capacity_) return allocate();  // throws StoreFull with the message
+    count = std::min(wanted, capacity_ - first);
+    for (std::size_t b = first >> kBlockBits; b <= (first + count - 1) >> kBlockBits; ++b) {
+      ensure_block(b);
+    }
+    return static_cast<TetId>(first);
   }
   // Slots handed out (a refused allocate counted no slot).
   [[nodiscard]] std::size_t size() const {

@@ -20,7 +20,9 @@ enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent
 // How the permuted points are split among the threads (paper Sect. 6).
 enum class Distribution { Static, Dynamic, Strips, Blocks };
 enum class Bounding { Infinite, AuxTet };
-enum class Location { Dag };
+// Dag: the paper's history DAG from a random order. Walk: BRIO rounds in Hilbert order and a
+// visibility walk from the last insertion, dead slots reused (docs/design.md, "Walk mode").
+enum class Location { Dag, Walk };
 // The repair after a run: none; star splaying from the marked tetrahedra and every non-Delaunay
 // face or bad tetrahedron, exact, for any method and kernel (Splay: --repair, always ends in the
 // Delaunay tetrahedralization, no rebuild); burglary's post-check as the paper has it, Lawson flips
@@ -142,7 +144,9 @@ struct TriangulationStats {
   FlipCounts flips;
   std::uint64_t dag_nodes = 0;
   std::uint64_t predicate_calls = 0;
-  std::uint64_t location_steps = 0;  // DAG nodes descended through, all insertions together
+  std::uint64_t location_steps = 0;  // DAG nodes descended or tetrahedra walked through
+  std::uint64_t walk_fallbacks = 0;  // walks that failed and located by the DAG (or a scan)
+  std::uint64_t store_slots = 0;     // tetrahedron slots used (DAG nodes, or live + free ones)
   std::uint64_t abandoned_insertions = 0;
   std::int64_t hull_tetrahedra_lost = -1;  // aux-tet only; -1 when not measured
   std::uint64_t peak_rss_bytes = 0;

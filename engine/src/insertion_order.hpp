@@ -1,0 +1,29 @@
+#pragma once
+// Insertion orders. The DAG mode inserts in the paper's random permutation. The walk mode inserts
+// in BRIO rounds (Amenta, Choi and Rote 2003: round k is a random sample of about n / 2^k points,
+// so the rounds keep the expected cost of a random order) and orders each round along a Hilbert
+// curve, so that consecutive points are close and the walk from the last insertion is short.
+// Both are functions of the seed alone. docs/design.md ("Walk mode") derives the curve's key.
+#include <cstdint>
+#include <vector>
+
+#include "dtlab/predicates/point.hpp"
+
+namespace dtlab::engine {
+
+// A uniformly random permutation of 0..n-1.
+std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed);
+
+// The position of cell (x, y, z) of a 2^bits grid along the Hilbert curve that fills it
+// (bits <= 21, so the key fits 63 bits). Consecutive keys name face-adjacent cells.
+std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, unsigned bits);
+
+// Reorders `ids` (a random order) into BRIO rounds, each sorted along the Hilbert curve of the
+// points' bounding box: the last round is the second half of `ids`, the one before it the
+// preceding quarter, and so on down to a first round of at most kFirstRound points.
+void brio_hilbert_order(const std::vector<predicates::Point3>& points,
+                        std::vector<std::uint32_t>& ids);
+
+inline constexpr std::size_t kFirstRound = 256;
+
+}  // namespace dtlab::engine
