@@ -456,8 +456,7 @@ class IncrementalDelaunay {
     const int zeros = static_cast<int>(std::count(o.begin(), o.end(), 0));
     if (zeros == 0) {
       scratch_old_.push_back(t);
-      for (int i = 0; i < 4; ++i) push_replaced(t, i, p, 0);
-      return finish_split(replace_known(t, kNoTet, kNoTet, -1));
+      return finish_split(replace_known(t, kNoTet, kNoTet, -1, p, {0, 1, 2, 3}, 4));
     }
     if (zeros == 1) {
       const int i0 = static_cast<int>(std::find(o.begin(), o.end(), 0) - o.begin());
@@ -687,10 +686,12 @@ class IncrementalDelaunay {
   // S23: abcp + abcy -> three tetrahedra around the new edge py.
   Flip flip23(TetId t, TetId t2, int ip, VertexId y) {
     begin_flip({t, t2});
+    std::array<int, 4> positions{};
+    int n = 0;
     for (int m = 0; m < 4; ++m) {
-      if (m != ip) push_replaced(t, m, y, -1);
+      if (m != ip) positions[static_cast<std::size_t>(n++)] = m;
     }
-    const Flip result = finish_flip(replace_known(t, t2, kNoTet, ip));
+    const Flip result = finish_flip(replace_known(t, t2, kNoTet, ip, y, positions, n));
     if (result == Flip::Done) ++stats_.flips.s23;
     return result;
   }
@@ -705,10 +706,12 @@ class IncrementalDelaunay {
     }
     if (!sync_->acquire(t3)) return Flip::GaveUp;
     begin_flip({t, t2, t3});
+    std::array<int, 4> positions{};
+    int n = 0;
     for (int j = 0; j < 4; ++j) {
-      if (j != ip && j != m) push_replaced(t, j, y, -1);
+      if (j != ip && j != m) positions[static_cast<std::size_t>(n++)] = j;
     }
-    const Flip result = finish_flip(replace_known(t, t2, t3, ip));
+    const Flip result = finish_flip(replace_known(t, t2, t3, ip, y, positions, n));
     if (result == Flip::Done) ++stats_.flips.s32;
     return result;
   }
@@ -870,76 +873,133 @@ class IncrementalDelaunay {
     return commit_replacement();
   }
 
-  // The faces of the three most frequent replacements follow from the adjacency alone, without
-  // matching keys: 1->4 (scratch_new_[j] is t with vertex j replaced), S23 and S32 (the new
-  // tetrahedra are t with one vertex replaced by y; `t2` lies across t's face ip, `t3` (S32 only)
-  // across t's face m). Two new tetrahedra made from t by replacing positions a and b share the
-  // face opposite b in the first and opposite a in the second; a new tetrahedron's face at its
-  // own replaced position is t's face there; its faces opposite p and opposite t[m] belong to
-  // t2 and t3, found by the vertex they lack. Falls back to the generic matching when the
-  // neighbourhood is not the textbook one (a broken mesh from an inexact kernel).
-  Replaced replace_known(TetId t, TetId t2, TetId t3, int ip) {
-    const std::size_t n = scratch_new_.size();
-    matched_.assign(4 * n, FaceMatch{0, false, false});
-    bool textbook = true;
-    auto outside = [&](std::size_t j, int f, FaceRef ref) {
-      const TetId other = ref_tet(ref);
-      if (other == t || other == t2 || other == t3) textbook = false;
-      matched_[4 * j + static_cast<std::size_t>(f)] = {ref, false, true};
-    };
-    auto across_from = [&](TetId old, VertexId lacking) {
-      const int i = mesh_.tets[old].index_of(lacking);
-      if (i < 0) {
-        textbook = false;
-        return FaceRef{0};
-      }
-      return mesh_.tets[old].neighbor[static_cast<std::size_t>(i)];
-    };
+  // The three most frequent replacements, 1->4, S23 and S32, written directly: new tetrahedron
+  // j is t with the vertex at positions[j] replaced by `put`, and its faces follow from the
+  // adjacency alone, without matching keys. Two new tetrahedra made from t by replacing
+  // positions a and b share the face opposite b in the first and opposite a in the second; a new
+  // tetrahedron's face at its own replaced position is t's face there; its face opposite p (S23,
+  // S32) belongs to t2, across t's face ip, and its face opposite t[m] (S32) to t3, across t's
+  // face m; each is found by the vertex it lacks, t[a]. scratch_old_ holds the old tetrahedra.
+  // When the neighbourhood is not the textbook one (a broken mesh from an inexact kernel: the
+  // vertex put in already in t, old tetrahedra not glued to each other both ways, or an outside
+  // face that belongs to an old tetrahedron) the generic matching of replace() decides.
+  Replaced replace_known(TetId t, TetId t2, TetId t3, int ip, VertexId put,
+                         const std::array<int, 4>& positions, int n) {
     const Tet& tet = mesh_.tets[t];
-    // The vertex put in must be new to t, and the old tetrahedra must be glued to each other
-    // both ways across their shared faces (t2 to t across the face opposite y; for S32, t2 and
-    // t3 across the face opposite t[m] in t2 and opposite p in t3). A broken mesh from an
-    // inexact kernel can fail either; the generic matching then decides.
-    const int first = scratch_source_[0].second;
-    const VertexId put = scratch_new_[0][static_cast<std::size_t>(first)];
-    if (tet.index_of(put) >= 0) textbook = false;
+    const auto count = static_cast<std::size_t>(n);
+    auto generic = [&] {
+      scratch_new_.clear();
+      scratch_parent_.clear();
+      scratch_source_.clear();
+      for (std::size_t j = 0; j < count; ++j)
+        push_replaced(t, positions[j], put, t2 == kNoTet ? 0 : -1);
+      return replace();
+    };
+    if (tet.index_of(put) >= 0) return generic();
+    int m = -1;
     if (t2 != kNoTet) {
       const Tet& second = mesh_.tets[t2];
-      const int y_at = second.index_of(put);
-      if (y_at < 0 || second.neighbor[static_cast<std::size_t>(y_at)] != face_ref(t, ip)) {
-        textbook = false;
+      const int put_at = second.index_of(put);
+      if (put_at < 0 || second.neighbor[static_cast<std::size_t>(put_at)] != face_ref(t, ip)) {
+        return generic();
       }
-      if (t3 != kNoTet && textbook) {
-        const int m = 6 - ip - scratch_source_[0].second - scratch_source_[1].second;
+      if (t3 != kNoTet) {
+        m = 6 - ip - positions[0] - positions[1];
         const int m_at = second.index_of(tet.vertex[static_cast<std::size_t>(m)]);
         const int p_at = mesh_.tets[t3].index_of(tet.vertex[static_cast<std::size_t>(ip)]);
         if (m_at < 0 || p_at < 0 ||
             second.neighbor[static_cast<std::size_t>(m_at)] != face_ref(t3, p_at)) {
-          textbook = false;
+          return generic();
         }
       }
     }
-    for (std::size_t j = 0; j < n; ++j) {
-      const int a = scratch_source_[j].second;
-      outside(j, a, tet.neighbor[static_cast<std::size_t>(a)]);
-      for (std::size_t k = j + 1; k < n; ++k) {
-        const int b = scratch_source_[k].second;
-        matched_[4 * j + static_cast<std::size_t>(b)] = {static_cast<FaceRef>(4 * k + a), true,
-                                                         true};
-        matched_[4 * k + static_cast<std::size_t>(a)] = {static_cast<FaceRef>(4 * j + b), true,
-                                                         true};
+    // link[j][f]: the outside face across new tetrahedron j's face f, or (is_new) 4 * k + g,
+    // face g of new tetrahedron k.
+    std::array<std::array<FaceMatch, 4>, 4> link{};
+    bool textbook = true;
+    auto outside = [&](std::size_t j, int f, FaceRef ref) {
+      const TetId other = ref_tet(ref);
+      if (other == t || other == t2 || other == t3) textbook = false;
+      link[j][static_cast<std::size_t>(f)] = {ref, false, true};
+    };
+    auto across_from = [&](TetId old, VertexId lacking) {
+      const Tet& o = mesh_.tets[old];
+      const int i = o.index_of(lacking);
+      if (i < 0) {
+        textbook = false;
+        return FaceRef{0};
       }
-      if (t2 == kNoTet) continue;
+      return o.neighbor[static_cast<std::size_t>(i)];
+    };
+    for (std::size_t j = 0; j < count; ++j) {
+      const int a = positions[j];
+      outside(j, a, tet.neighbor[static_cast<std::size_t>(a)]);
+      for (std::size_t k = 0; k < count; ++k) {
+        if (k != j) {
+          link[j][static_cast<std::size_t>(positions[k])] = {static_cast<FaceRef>(4 * k + a), true,
+                                                             true};
+        }
+      }
       const VertexId lost = tet.vertex[static_cast<std::size_t>(a)];
-      outside(j, ip, across_from(t2, lost));
-      if (t3 == kNoTet) continue;
-      for (int f = 0; f < 4; ++f) {  // the face left: opposite t[m]
-        if (!matched_[4 * j + static_cast<std::size_t>(f)].set)
-          outside(j, f, across_from(t3, lost));
+      if (t2 != kNoTet) outside(j, ip, across_from(t2, lost));
+      if (t3 != kNoTet) outside(j, m, across_from(t3, lost));
+    }
+    if (!textbook) return generic();
+
+    // As in commit_replacement: lock every tetrahedron written, log it before its first write.
+    if constexpr (Sync::kLocks) {
+      for (std::size_t j = 0; j < count; ++j) {
+        for (const FaceMatch& l : link[j]) {
+          if (!l.is_new && !sync_->acquire(ref_tet(l.ref))) return Replaced::GaveUp;
+        }
+      }
+      for (std::size_t j = 0; j < count; ++j) {
+        for (const FaceMatch& l : link[j]) {
+          if (!l.is_new) sync_->before_write(ref_tet(l.ref));
+        }
+      }
+      for (const TetId o : scratch_old_) sync_->before_write(o);
+    }
+    std::array<TetId, 4> ids{};
+    for (std::size_t j = 0; j < count; ++j) {
+      ids[j] = allocate_slot();
+      Tet& fresh = mesh_.tets[ids[j]];
+      fresh.vertex = tet.vertex;
+      fresh.vertex[static_cast<std::size_t>(positions[j])] = put;
+      if (!recycle_) {
+        for (auto& c : fresh.child) c.store(kNoTet, std::memory_order_relaxed);
+      }
+      sync_->created(ids[j]);
+    }
+    for (std::size_t j = 0; j < count; ++j) {
+      Tet& fresh = mesh_.tets[ids[j]];
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
+        if (l.is_new) {
+          store_neighbor(fresh, f, face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)));
+        } else {
+          store_neighbor(fresh, f, l.ref);
+          store_neighbor(mesh_.tets[ref_tet(l.ref)], ref_face(l.ref), face_ref(ids[j], f));
+        }
       }
     }
-    if (!textbook) return replace();
-    return commit_replacement();
+    // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
+    for (const TetId o : scratch_old_) {
+      Tet& old = mesh_.tets[o];
+      if (recycle_) {
+        old.alive.store(false, std::memory_order_relaxed);
+        retired_.push_back(o);
+        continue;
+      }
+      for (std::size_t j = 0; j < count; ++j) old.child[j].store(ids[j], std::memory_order_release);
+      old.alive.store(false, std::memory_order_release);
+      sync_->killed(o);
+    }
+    scratch_created_.assign(ids.begin(), ids.begin() + n);
+    for (std::size_t j = 0; j < count; ++j) {
+      mesh_.tets[ids[j]].alive.store(true, std::memory_order_release);
+    }
+    return Replaced::Done;
   }
 
   Replaced commit_replacement() {

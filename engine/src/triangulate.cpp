@@ -154,6 +154,33 @@ std::vector<Tetrahedron> canonical(std::vector<Tetrahedron> tets) {
   return tets;
 }
 
+// Each set of equal input points is named by its lowest index (as SharedMesh::finite_tetrahedra
+// does in the engine's own numbering, which the walk mode's renumbering changes).
+void name_duplicates_by_lowest_index(const std::vector<Point3>& input,
+                                     std::vector<Tetrahedron>& tets) {
+  std::vector<std::uint32_t> by_point(input.size());
+  for (std::size_t i = 0; i < by_point.size(); ++i) by_point[i] = static_cast<std::uint32_t>(i);
+  auto less = [&](std::uint32_t a, std::uint32_t b) {
+    const Point3& p = input[a];
+    const Point3& q = input[b];
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return a < b;
+  };
+  std::sort(by_point.begin(), by_point.end(), less);
+  std::vector<std::uint32_t> lowest(input.size());
+  for (std::size_t i = 0; i < by_point.size(); ++i) {
+    const bool same = i > 0 && input[by_point[i]] == input[by_point[i - 1]];
+    lowest[by_point[i]] = same ? lowest[by_point[i - 1]] : by_point[i];
+  }
+  for (auto& t : tets) {
+    for (auto& v : t) {
+      if (v < lowest.size()) v = lowest[v];
+    }
+  }
+}
+
 }  // namespace
 
 const char* to_string(KernelKind k) {
@@ -257,8 +284,25 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
   std::vector<std::uint32_t> order = random_order(input.size(), options.seed);
   const SimplexSearch search = find_simplex(input, order);
   // The walk mode's order (the parallel methods give each thread its own, parallel_methods.cpp).
-  if (options.location == Location::Walk && options.method == Method::Sequential) {
+  // The sequential walk also renumbers the vertices in that order: the points are stored in the
+  // order they are inserted (in the scaled copy, so at no extra memory), so that the points of
+  // neighbouring tetrahedra lie close in memory; the output is named by input index again below.
+  std::vector<std::uint32_t> input_index;  // engine vertex id -> input index (walk mode)
+  std::array<std::uint32_t, 4> simplex{};
+  if (search.simplex) simplex = *search.simplex;
+  if (options.location == Location::Walk && options.method == Method::Sequential &&
+      search.simplex) {
     brio_hilbert_order(input, order);
+    input_index = order;
+    std::vector<Point3> sorted(points.size());
+    std::vector<std::uint32_t> engine_id(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      sorted[i] = points[order[i]];
+      engine_id[order[i]] = static_cast<std::uint32_t>(i);
+    }
+    points.swap(sorted);
+    for (auto& v : simplex) v = engine_id[v];
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   }
   if (!search.simplex) {
     throw TriangulationError("no tetrahedralization exists: the affine dimension of the " +
@@ -277,7 +321,7 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     }
   };
   if (options.bounding == Bounding::Infinite) {
-    result.tetrahedra = run(*search.simplex, true);
+    result.tetrahedra = run(simplex, true);
   } else {
     // The paper's auxiliary tetrahedron: (m,0,0), (0,m,0), (0,0,m), (-m,-m,-m) around the box
     // centre, m = 200 x the box size; removed with every tetrahedron touching it at the end.
@@ -305,6 +349,12 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
       }
     }
     result.tetrahedra = run({n, n + 1, n + 2, n + 3}, false);
+  }
+  if (!input_index.empty()) {
+    for (auto& t : result.tetrahedra) {
+      for (auto& v : t) v = input_index[v];
+    }
+    if (stats.duplicates > 0) name_duplicates_by_lowest_index(input, result.tetrahedra);
   }
   stats.tetrahedra = result.tetrahedra.size();
   // The post-check's validation is a measurement, not part of the method.
