@@ -28,6 +28,7 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/predicates/perturbation.hpp"
 #include "shared_mesh.hpp"
+#include "slot_reclaimer.hpp"
 
 namespace dtlab::engine {
 
@@ -52,19 +53,24 @@ class IncrementalDelaunay {
         stats_(stats),
         sync_(&own_sync_),
         walk_(options.location == Location::Walk),
-        recycle_(walk_) {
+        recycle_(walk_),
+        shared_(false) {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
   }
 
   // One inserting thread of a parallel method, on a shared mesh.
+  // In walk mode with a reclaimer the thread reuses dead slots (slot_reclaimer.hpp); without one
+  // (the post-check's repair) it keeps every slot and writes the DAG children.
   IncrementalDelaunay(SharedMesh& mesh, const TriangulateOptions& options,
-                      TriangulationStats& stats, Sync& sync)
+                      TriangulationStats& stats, Sync& sync, SlotReclaimer* reclaimer = nullptr)
       : mesh_(mesh),
         options_(options),
         stats_(stats),
         sync_(&sync),
         walk_(options.location == Location::Walk),
-        recycle_(false) {}
+        recycle_(walk_ && reclaimer != nullptr),
+        shared_(true),
+        reclaimer_(reclaimer) {}
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {
@@ -106,16 +112,31 @@ class IncrementalDelaunay {
   }
 
   Outcome insert(VertexId p) {
+    if (reclaimer_ != nullptr) reclaimer_->enter();
+    attempt_created_.clear();
     const Outcome outcome = insert_point(p);
     if (outcome == Outcome::Inserted && !scratch_created_.empty()) {
       walk_start_ = scratch_created_.back();  // alive now: the next walk starts here
     }
     if (recycle_) {
-      // The slots of the tetrahedra this insertion killed are free from now on.
-      free_slots_.insert(free_slots_.end(), retired_.begin(), retired_.end());
+      if (outcome == Outcome::GaveUp || outcome == Outcome::Unlocated) {
+        // The rollback revived the tetrahedra this attempt killed; the ones it created are dead.
+        for (const TetId t : attempt_created_) release_slot(t);
+      } else {
+        for (const TetId t : retired_) release_slot(t);  // killed by this insertion
+      }
       retired_.clear();
     }
+    if (reclaimer_ != nullptr) {
+      reclaimer_->leave();
+      reclaimer_->collect(free_slots_);
+    }
     return outcome;
+  }
+
+  // Ends an operation that only located (the batch method's locating threads).
+  void end_operation() {
+    if (reclaimer_ != nullptr) reclaimer_->leave();
   }
 
  private:
@@ -189,6 +210,7 @@ class IncrementalDelaunay {
   TetId locate_only(VertexId p) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
+    if (reclaimer_ != nullptr) reclaimer_->enter();  // insert() or end_operation() leaves
     std::array<int, 4> o{};
     const TetId t = locate(p, o);
     if (t != kNoTet) walk_start_ = t;  // the next point is near on the curve
@@ -269,16 +291,31 @@ class IncrementalDelaunay {
   }
 
   // Walk mode. The owning (sequential) engine walks from the tetrahedron its last insertion
-  // created, which is alive, over live tetrahedra only: the walk's answer is final. On a shared
-  // mesh other threads change the tetrahedra under the walk; no slot is reused there and every
-  // dead tetrahedron keeps its vertices, its last neighbours and its DAG children, so the walk
-  // only ever reads real tetrahedra, and where it ends in a dead one the DAG below that one is
-  // descended to the live leaf that contains p (and checked there, as in the DAG mode). A walk
-  // that fails on a shared mesh (a rollback retired the tetrahedron it ended in, or it ran out of
-  // steps in a part that was changing) falls back to the DAG from the roots.
+  // created, which is alive, over live tetrahedra only: the walk's answer is final.
+  // On a shared mesh other threads change the tetrahedra under the walk. With slot reuse (the
+  // parallel walk mode) the walk starts from a tetrahedron it has just seen alive, inside an
+  // epoch-protected operation: every slot it then reaches was alive at some moment of the
+  // operation, so none is reused before the operation ends (slot_reclaimer.hpp) and each keeps
+  // real vertices and its last neighbours. The walk may end in a tetrahedron that died
+  // meanwhile: then it walks again from a live one. insert() locks the result and checks it is
+  // still alive; a live tetrahedron cannot have changed its vertices since the walk read them.
+  // Without slot reuse (no reclaimer) every dead tetrahedron keeps its DAG children too, and a
+  // walk that ends in a dead one descends the DAG below it, or from the roots when it failed.
   TetId locate_by_walk(VertexId p, std::array<int, 4>& o) {
     TetId start = hint_ != kNoTet ? hint_ : walk_start_;
     hint_ = kNoTet;
+    if (recycle_ && shared_) {
+      for (int attempt = 0; attempt < 64; ++attempt) {
+        if (start == kNoTet || !mesh_.tets[start].alive.load(std::memory_order_acquire)) {
+          start = live_near(start);
+        }
+        const TetId t = walk(p, o, start);
+        if (t != kNoTet && mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
+        ++walk_fallbacks_;
+        if (t != kNoTet) start = t;
+      }
+      return kNoTet;
+    }
     if (recycle_) {
       if (start == kNoTet || !mesh_.tets[start].alive.load(std::memory_order_relaxed)) {
         start = any_live_tetrahedron();
@@ -355,6 +392,20 @@ class IncrementalDelaunay {
     }
     location_steps_ += limit;
     return kNoTet;
+  }
+
+  // A tetrahedron seen alive: the first at or below `near` (or from the top), else above it. With
+  // slots reused almost every slot is alive, so the search is short.
+  TetId live_near(TetId near) const {
+    const auto slots = static_cast<TetId>(mesh_.tets.size());
+    const TetId top = near == kNoTet || near >= slots ? slots : near + 1;
+    for (TetId t = top; t-- > 0;) {
+      if (mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
+    }
+    for (TetId t = top; t < slots; ++t) {
+      if (mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
+    }
+    return mesh_.roots.front();
   }
 
   // The owning engine's last resorts: some live tetrahedron, and the live tetrahedron that
@@ -775,17 +826,28 @@ class IncrementalDelaunay {
 
   // A free slot: a recycled one, else the next of this engine's run of fresh slots.
   TetId allocate_slot() {
+    TetId id = kNoTet;
     if (!free_slots_.empty()) {
-      const TetId id = free_slots_.back();
+      id = free_slots_.back();
       free_slots_.pop_back();
-      return id;
+    } else {
+      if (run_next_ == run_end_) {
+        std::size_t count = 0;
+        run_next_ = mesh_.tets.allocate_run(kSlotRun, count);
+        run_end_ = run_next_ + static_cast<TetId>(count);
+      }
+      id = run_next_++;
     }
-    if (run_next_ == run_end_) {
-      std::size_t count = 0;
-      run_next_ = mesh_.tets.allocate_run(kSlotRun, count);
-      run_end_ = run_next_ + static_cast<TetId>(count);
+    if (reclaimer_ != nullptr) attempt_created_.push_back(id);
+    return id;
+  }
+  // A dead slot: free at once for the owning engine, after the epochs for a shared mesh.
+  void release_slot(TetId t) {
+    if (reclaimer_ != nullptr) {
+      reclaimer_->retire(t);
+    } else {
+      free_slots_.push_back(t);
     }
-    return run_next_++;
   }
   // 64 slots of 56 bytes: a run spans whole cache lines, and what a run leaves unused at the end
   // (dead, never alive) is at most 63 slots per thread.
@@ -971,14 +1033,19 @@ class IncrementalDelaunay {
       }
       sync_->created(ids[j]);
     }
+    // The new tetrahedra's own references first, then the outside's references to them
+    // (release): a walking thread that reaches a new tetrahedron finds all four set.
     for (std::size_t j = 0; j < count; ++j) {
       Tet& fresh = mesh_.tets[ids[j]];
       for (int f = 0; f < 4; ++f) {
         const FaceMatch l = link[j][static_cast<std::size_t>(f)];
-        if (l.is_new) {
-          store_neighbor(fresh, f, face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)));
-        } else {
-          store_neighbor(fresh, f, l.ref);
+        store_neighbor(fresh, f, l.is_new ? face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)) : l.ref);
+      }
+    }
+    for (std::size_t j = 0; j < count; ++j) {
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
+        if (!l.is_new) {
           store_neighbor(mesh_.tets[ref_tet(l.ref)], ref_face(l.ref), face_ref(ids[j], f));
         }
       }
@@ -987,8 +1054,9 @@ class IncrementalDelaunay {
     for (const TetId o : scratch_old_) {
       Tet& old = mesh_.tets[o];
       if (recycle_) {
-        old.alive.store(false, std::memory_order_relaxed);
+        old.alive.store(false, std::memory_order_release);
         retired_.push_back(o);
+        sync_->killed(o);
         continue;
       }
       for (std::size_t j = 0; j < count; ++j) old.child[j].store(ids[j], std::memory_order_release);
@@ -1025,14 +1093,19 @@ class IncrementalDelaunay {
       sync_->created(id);  // locked by this thread before anyone can reach it
       scratch_created_.push_back(id);
     }
+    // The new tetrahedra's own references first, then the outside's references to them.
     for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
       Tet& tet = mesh_.tets[scratch_created_[j]];
       for (int f = 0; f < 4; ++f) {
         const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
-        if (m.is_new) {
-          store_neighbor(tet, f, face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref)));
-        } else {
-          store_neighbor(tet, f, m.ref);
+        store_neighbor(
+            tet, f, m.is_new ? face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref)) : m.ref);
+      }
+    }
+    for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
+        if (!m.is_new) {
           store_neighbor(mesh_.tets[ref_tet(m.ref)], ref_face(m.ref),
                          face_ref(scratch_created_[j], f));
         }
@@ -1043,8 +1116,9 @@ class IncrementalDelaunay {
     for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
       Tet& old = mesh_.tets[scratch_old_[r]];
       if (recycle_) {
-        old.alive.store(false, std::memory_order_relaxed);
+        old.alive.store(false, std::memory_order_release);
         retired_.push_back(scratch_old_[r]);
+        sync_->killed(scratch_old_[r]);
         continue;
       }
       int slot = 0;
@@ -1074,6 +1148,9 @@ class IncrementalDelaunay {
   // insertion that killed them ends (its legalization stack may still name them until then).
   bool walk_;
   bool recycle_;
+  bool shared_;                         // other threads may change the mesh meanwhile
+  SlotReclaimer* reclaimer_ = nullptr;  // a shared mesh's slot reuse (parallel walk mode)
+  std::vector<TetId> attempt_created_;  // slots this insertion attempt took (reclaimer only)
   TetId walk_start_ = kNoTet;
   std::uint64_t walk_random_ = (options_.seed * 0x9E3779B97F4A7C15ULL) | 1;  // xorshift state
   std::uint64_t walk_fallbacks_ = 0;

@@ -224,7 +224,17 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   TriangulationStats repair_stats;
   NoSync no_sync;
   IncrementalDelaunay<K, NoSync> dt(mesh, options, repair_stats, no_sync);
-  check.repair_flips = dt.relegalize(marks, false);
+  // Walk mode keeps no DAG and reuses slots: a mark stands for itself, when it is still alive
+  // (a reused slot marks an unrelated live tetrahedron: extra faces checked, nothing missed,
+  // since the sweep below and star splaying's exact scan find every non-Delaunay face).
+  std::vector<TetId> live_marks;
+  if (options.location == Location::Walk) {
+    for (const TetId t : marks) {
+      if (mesh.tets[t].alive.load(std::memory_order_relaxed)) live_marks.push_back(t);
+    }
+  }
+  check.repair_flips =
+      dt.relegalize(options.location == Location::Walk ? live_marks : marks, false);
   tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
   check.non_delaunay_after_marked = count(tets);
   check.non_delaunay_after_flips = check.non_delaunay_after_marked;
@@ -300,6 +310,8 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   std::atomic<std::uint64_t> progress{0};
   std::vector<std::vector<TetId>> suspicious(static_cast<std::size_t>(threads));
   LockTable table(threads);
+  // Walk mode: dead slots are reused, after the epochs say no operation can reach them.
+  EpochDomain epochs(threads + 1);  // the batch method: its locating threads and its inserter
   std::atomic<std::size_t> shared_index{0};
   const bool dynamic = options.distribution == Distribution::Dynamic;
   const bool walk = options.location == Location::Walk;
@@ -342,8 +354,10 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     const auto index = static_cast<std::size_t>(i);
     ThreadStats& counters = stats.threads[index];
     WorkSource work(dynamic ? nullptr : &parts[index], dynamic ? &shared_index : nullptr, &order);
+    SlotReclaimer reclaimer(epochs, i);
+    SlotReclaimer* reuse = walk ? &reclaimer : nullptr;
     if (options.method == Method::Pessimistic) {
-      IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[index], no_sync);
+      IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[index], no_sync, reuse);
       while (const auto v = work.next()) {
         if (table.stop.load(std::memory_order_relaxed)) break;
         // Lock-free descent (timed and counted as location); the leaf-level part, subdivision
@@ -361,7 +375,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
                                                                   : OptimisticSync::Mode::Detect;
     OptimisticSync sync(mesh, table, static_cast<std::uint32_t>(i + 1), mode, counters,
                         options.stress);
-    IncrementalDelaunay<K, OptimisticSync> dt(mesh, options, thread_stats[index], sync);
+    IncrementalDelaunay<K, OptimisticSync> dt(mesh, options, thread_stats[index], sync, reuse);
     int consecutive_give_ups = 0;
     while (const auto v = work.next()) {
       if (table.stop.load(std::memory_order_relaxed)) break;
@@ -419,11 +433,14 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
       pool.emplace_back([&, i] {
         const auto index = static_cast<std::size_t>(i);
         try {
-          IncrementalDelaunay<K, NoSync> dt(mesh, options, locator_stats[index], no_sync);
+          SlotReclaimer reclaimer(epochs, i + 1);
+          IncrementalDelaunay<K, NoSync> dt(mesh, options, locator_stats[index], no_sync,
+                                            walk ? &reclaimer : nullptr);
           WorkSource work(dynamic ? nullptr : &locator_parts[index],
                           dynamic ? &shared_index : nullptr, &order);
           while (const auto v = work.next()) {
             const TetId hint = dt.locate_only(*v);
+            dt.end_operation();  // the inserting thread checks the hint is still alive
             std::unique_lock<std::mutex> lock(queue_mutex);
             if (queue.size() >= capacity) {
               full_waits.fetch_add(1, std::memory_order_relaxed);
@@ -445,7 +462,9 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
         not_empty.notify_all();
       });
     }
-    IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[0], no_sync);
+    SlotReclaimer reclaimer(epochs, 0);
+    IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[0], no_sync,
+                                      walk ? &reclaimer : nullptr);
     ThreadStats& counters = stats.threads[0];
     while (true) {
       std::pair<std::uint32_t, TetId> item;
@@ -520,7 +539,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     stats.duplicates += t.duplicates;
     stats.abandoned_insertions += t.abandoned;
   }
-  stats.dag_nodes = mesh.tets.size();  // on a shared mesh the walk mode keeps the DAG too
+  stats.dag_nodes = walk ? 0 : mesh.tets.size();
   stats.store_slots = mesh.tets.size();
   if (options.method == Method::Burglary) {
     std::vector<TetId> marks;

@@ -1,0 +1,89 @@
+#pragma once
+// Epoch-based reclamation of tetrahedron slots for the parallel walk mode (docs/design.md, "Walk
+// mode"). A thread's operation (one insertion attempt, or one location of the batch method's
+// locating threads) is bracketed by enter() and leave(). A slot that dies is retired with the
+// global epoch of that moment and reused only once the epoch is two ahead: the epoch moves from
+// e to e + 1 only when every thread inside an operation entered it at e, so two steps past the
+// retirement every operation that could have reached the slot has ended. New operations cannot
+// reach it: they start from a live tetrahedron and follow neighbour references, and a slot is
+// retired only after it was unlinked from every live tetrahedron.
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "dtlab/engine/tet_mesh.hpp"
+
+namespace dtlab::engine {
+
+class EpochDomain {
+ public:
+  static constexpr std::uint64_t kQuiescent = ~std::uint64_t{0};
+  explicit EpochDomain(int threads)
+      : announced_(new Announcement[static_cast<std::size_t>(threads)]), threads_(threads) {}
+  std::atomic<std::uint64_t>& announced(int thread) {
+    return announced_[static_cast<std::size_t>(thread)].epoch;
+  }
+  std::atomic<std::uint64_t> epoch{2};
+
+  // Advances the epoch when every thread inside an operation entered it at the current one.
+  void try_advance() {
+    std::uint64_t current = epoch.load(std::memory_order_acquire);
+    for (int i = 0; i < threads_; ++i) {
+      const std::uint64_t a = announced(i).load(std::memory_order_acquire);
+      if (a != kQuiescent && a != current) return;
+    }
+    epoch.compare_exchange_strong(current, current + 1, std::memory_order_acq_rel);
+  }
+
+ private:
+  struct alignas(64) Announcement {  // one cache line per thread
+    std::atomic<std::uint64_t> epoch{kQuiescent};
+  };
+  std::unique_ptr<Announcement[]> announced_;
+  int threads_;
+};
+
+// One thread's side: its announcement, and the slots it retired, oldest first.
+class SlotReclaimer {
+ public:
+  SlotReclaimer(EpochDomain& domain, int thread)
+      : domain_(domain), mine_(domain.announced(thread)) {}
+
+  void enter() {
+    if (inside_) return;
+    inside_ = true;
+    // seq_cst: the announcement is visible to every advancing thread before this thread reads
+    // the mesh (a store-load order that acquire and release alone do not give).
+    mine_.store(domain_.epoch.load(std::memory_order_seq_cst), std::memory_order_seq_cst);
+  }
+  void leave() {
+    if (!inside_) return;
+    inside_ = false;
+    mine_.store(EpochDomain::kQuiescent, std::memory_order_release);
+  }
+  void retire(TetId t) { limbo_.push_back({t, domain_.epoch.load(std::memory_order_acquire)}); }
+  // Moves the slots that no operation can reach any more to `free`.
+  void collect(std::vector<TetId>& free) {
+    if ((++collections_ & 63) == 0) domain_.try_advance();
+    const std::uint64_t now = domain_.epoch.load(std::memory_order_acquire);
+    while (!limbo_.empty() && limbo_.front().epoch + 2 <= now) {
+      free.push_back(limbo_.front().tet);
+      limbo_.pop_front();
+    }
+  }
+
+ private:
+  struct Retired {
+    TetId tet;
+    std::uint64_t epoch;
+  };
+  EpochDomain& domain_;
+  std::atomic<std::uint64_t>& mine_;
+  std::deque<Retired> limbo_;
+  std::uint64_t collections_ = 0;
+  bool inside_ = false;
+};
+
+}  // namespace dtlab::engine
