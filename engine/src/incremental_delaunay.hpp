@@ -1,7 +1,14 @@
 #pragma once
-// The insertion kernel: DAG location, 1->4 / 2->6 / k->2k subdivision, and legalization by the
+// The insertion kernel: location, 1->4 / 2->6 / k->2k subdivision, and legalization by the
 // swaps S23, S32, S22 and S44 (Kohout and Kolingerova 2003, Sect. 4). Templated on the predicate
-// kernel K so that a kernel costs nothing to choose. See docs/design.md.
+// kernel K so that a kernel costs nothing to choose, and on the lock policy Sync. See
+// docs/design.md. Its parts, each with its contract where it lives:
+//   mesh_geometry.hpp    orientation and insphere tests, the infinite vertex
+//   point_location.hpp   the DAG descent and the walk
+//   tet_replacement.hpp  replacing tetrahedra by new ones (every split and flip ends there)
+//   slot_allocator.hpp   slots for new tetrahedra, reuse of dead ones (walk mode)
+//   optimistic_sync.hpp  the lock methods' locks and undo log (Sync)
+// This file keeps the insertion itself: start, insert, subdivide, legalize and the flips.
 //
 // The vertex at infinity. Every hull face carries an infinite tetrahedron, so every face has two
 // sides and S22 is the S44 whose ring contains the infinite vertex. For orientation tests the
@@ -27,8 +34,12 @@
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/predicates/perturbation.hpp"
+#include "mesh_geometry.hpp"
+#include "point_location.hpp"
 #include "shared_mesh.hpp"
+#include "slot_allocator.hpp"
 #include "slot_reclaimer.hpp"
+#include "tet_replacement.hpp"
 
 namespace dtlab::engine {
 
@@ -54,7 +65,10 @@ class IncrementalDelaunay {
         sync_(&own_sync_),
         walk_(options.location == Location::Walk),
         recycle_(walk_),
-        shared_(false) {
+        geometry_(mesh_),
+        slots_(mesh_.tets, recycle_, nullptr),
+        replacement_(mesh_, *sync_, slots_, !recycle_),
+        locator_(mesh_, options, geometry_, walk_, recycle_, false, Sync::kLocks) {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
   }
 
@@ -69,8 +83,10 @@ class IncrementalDelaunay {
         sync_(&sync),
         walk_(options.location == Location::Walk),
         recycle_(walk_ && reclaimer != nullptr),
-        shared_(true),
-        reclaimer_(reclaimer) {}
+        geometry_(mesh_),
+        slots_(mesh_.tets, recycle_, reclaimer),
+        replacement_(mesh_, *sync_, slots_, !recycle_),
+        locator_(mesh_, options, geometry_, walk_, recycle_, true, Sync::kLocks) {}
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {
@@ -94,57 +110,39 @@ class IncrementalDelaunay {
                             predicates::ExactKernel::orient3d(qa, qb, pc, rounded) > 0;
     mesh_.origin = rounded;
     const std::array<VertexId, 4> first{a, b, c, d};
-    scratch_new_.clear();
-    scratch_new_.push_back(first);
+    replacement_.begin({});
+    replacement_.push_new(first);
     for (const auto& f : kFaceVertex) {
-      scratch_new_.push_back({first[static_cast<std::size_t>(f[0])],
-                              first[static_cast<std::size_t>(f[1])],
-                              first[static_cast<std::size_t>(f[2])], kInfiniteVertex});
+      replacement_.push_new({first[static_cast<std::size_t>(f[0])],
+                             first[static_cast<std::size_t>(f[1])],
+                             first[static_cast<std::size_t>(f[2])], kInfiniteVertex});
     }
-    scratch_old_.clear();
-    scratch_parent_.assign(scratch_new_.size(), -1);
-    scratch_source_.assign(scratch_new_.size(), {kNoTet, 0});
-    if (replace() != Replaced::Done) {
+    if (replacement_.replace() != Replaced::Done) {
       throw std::logic_error("dtlab: the first tetrahedron does not close up");
     }
     sync_->commit();
-    mesh_.roots = scratch_created_;
+    mesh_.roots = replacement_.created();
   }
 
   Outcome insert(VertexId p) {
-    if (reclaimer_ != nullptr) reclaimer_->enter();
-    attempt_created_.clear();
+    slots_.begin_insertion();
     const Outcome outcome = insert_point(p);
-    if (outcome == Outcome::Inserted && !scratch_created_.empty()) {
-      walk_start_ = scratch_created_.back();  // alive now: the next walk starts here
+    if (outcome == Outcome::Inserted && !replacement_.created().empty()) {
+      locator_.remember(replacement_.created().back());  // alive now: the next walk starts here
     }
-    if (recycle_) {
-      if (outcome == Outcome::GaveUp || outcome == Outcome::Unlocated) {
-        // The rollback revived the tetrahedra this attempt killed; the ones it created are dead.
-        for (const TetId t : attempt_created_) release_slot(t);
-      } else {
-        for (const TetId t : retired_) release_slot(t);  // killed by this insertion
-      }
-      retired_.clear();
-    }
-    if (reclaimer_ != nullptr) {
-      reclaimer_->leave();
-      reclaimer_->collect(free_slots_);
-    }
+    slots_.end_insertion(outcome == Outcome::GaveUp || outcome == Outcome::Unlocated);
     return outcome;
   }
 
   // Ends an operation that only located (the batch method's locating threads).
-  void end_operation() {
-    if (reclaimer_ != nullptr) reclaimer_->leave();
-  }
+  void end_operation() { slots_.end_operation(); }
 
  private:
   Outcome insert_point(VertexId p) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     std::array<int, 4> o{};
-    TetId t = locate(p, o);
+    TetId t = locator_.locate(p, o);
     bool refused = false;
     if constexpr (Sync::kLocks) {
       // Lock the leaf; if another thread replaced it meanwhile, descend again from it.
@@ -159,7 +157,7 @@ class IncrementalDelaunay {
           refused = true;
           break;
         }
-        t = locate(p, o);
+        t = locator_.locate(p, o);
       }
     }
     const auto t1 = Clock::now();
@@ -194,7 +192,7 @@ class IncrementalDelaunay {
  public:
   // Continues a location that another thread started (the batch method's hint): descends from
   // `start`, which must be a node that contains p, then inserts.
-  void set_location_hint(TetId hint) { hint_ = hint; }
+  void set_location_hint(TetId hint) { locator_.set_hint(hint); }
 
   std::vector<Tetrahedron> finite_tetrahedra(VertexId vertex_limit) const {
     return mesh_.finite_tetrahedra(vertex_limit, duplicates_);
@@ -210,10 +208,10 @@ class IncrementalDelaunay {
   TetId locate_only(VertexId p) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    if (reclaimer_ != nullptr) reclaimer_->enter();  // insert() or end_operation() leaves
+    slots_.begin_operation();  // insert() or end_operation() ends it
     std::array<int, 4> o{};
-    const TetId t = locate(p, o);
-    if (t != kNoTet) walk_start_ = t;  // the next point is near on the curve
+    const TetId t = locator_.locate(p, o);
+    if (t != kNoTet) locator_.remember(t);  // the next point is near on the curve
     stats_.seconds.location += std::chrono::duration<double>(Clock::now() - t0).count();
     return t;
   }
@@ -227,297 +225,32 @@ class IncrementalDelaunay {
 
  public:
   [[nodiscard]] std::uint64_t dag_nodes() const { return mesh_.tets.size(); }
-  [[nodiscard]] std::uint64_t predicate_calls() const { return predicate_calls_; }
-  [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
-  [[nodiscard]] std::uint64_t walk_fallbacks() const { return walk_fallbacks_; }
+  [[nodiscard]] std::uint64_t predicate_calls() const { return geometry_.predicate_calls(); }
+  [[nodiscard]] std::uint64_t location_steps() const { return locator_.location_steps(); }
+  [[nodiscard]] std::uint64_t walk_fallbacks() const { return locator_.walk_fallbacks(); }
   // Slots in use: the DAG's nodes, or (recycling) the live tetrahedra and the free slots.
   [[nodiscard]] std::uint64_t store_slots() const { return mesh_.tets.size(); }
 
  private:
-  // Only finite vertices are looked up: the infinite vertex never reaches a point lookup.
-  const Point3& point(VertexId v) const { return mesh_.points[v]; }
-
-  int orient(const Quad& q) {
-    ++predicate_calls_;
-    int inf = 3;
-    while (inf >= 0 && q[static_cast<std::size_t>(inf)] != kInfiniteVertex) --inf;
-    if (inf < 0) return K::orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
-    // orient(q) = -orient(q with inf -> O); move O to the last slot (a swap: one more sign).
-    Quad r = q;
-    std::swap(r[static_cast<std::size_t>(inf)], r[3]);
-    const int s = mesh_.origin_is_point
-                      ? K::orient3d(point(r[0]), point(r[1]), point(r[2]), mesh_.origin)
-                      : K::orient3d_centroid(point(r[0]), point(r[1]), point(r[2]), mesh_.first);
-    return inf == 3 ? -s : s;
-  }
-
-  // Orientation of tetrahedron t with its vertex at position i replaced by v.
-  int orient_replaced(const Tet& t, int i, VertexId v) {
-    Quad q = t.vertex;
-    q[static_cast<std::size_t>(i)] = v;
-    return orient(q);
-  }
-
-  // Whether p lies strictly inside the (perturbed) circumsphere of t (conflict.hpp).
-  bool in_conflict(const Tet& t, VertexId p) {
-    ++predicate_calls_;
-    return engine::in_conflict<K>(mesh_.points, t.vertex, p);
-  }
-
-  // p inside or on the boundary of t; `o` receives the four orientations.
-  bool contains(TetId t, VertexId p, std::array<int, 4>& o) {
-    const Tet& tet = mesh_.tets[t];
-    for (int i = 0; i < 4; ++i) {
-      o[static_cast<std::size_t>(i)] = orient_replaced(tet, i, p);
-      if (o[static_cast<std::size_t>(i)] < 0) return false;
-    }
-    return true;
-  }
-
-  // Descends the history DAG from the roots (or from a batch hint) to the live tetrahedron that
-  // contains p. With other threads writing, a node can be retired by a rollback under the reader
-  // (dead, no children) or a leaf can turn out not to contain p: the descent then restarts.
-  TetId locate(VertexId p, std::array<int, 4>& o) {
-    if (walk_) return locate_by_walk(p, o);
-    TetId start = hint_;
-    hint_ = kNoTet;
-    for (int attempt = 0; attempt < 64; ++attempt) {
-      bool retry = false;
-      const TetId t = descend(p, o, start, retry);
-      if (!retry) return t;
-      start = kNoTet;
-    }
-    return kNoTet;
-  }
-
-  // Walk mode. The owning (sequential) engine walks from the tetrahedron its last insertion
-  // created, which is alive, over live tetrahedra only: the walk's answer is final.
-  // On a shared mesh other threads change the tetrahedra under the walk. With slot reuse (the
-  // parallel walk mode) the walk starts from a tetrahedron it has just seen alive, inside an
-  // epoch-protected operation: every slot it then reaches was alive at some moment of the
-  // operation, so none is reused before the operation ends (slot_reclaimer.hpp) and each keeps
-  // real vertices and its last neighbours. The walk may end in a tetrahedron that died
-  // meanwhile: then it walks again from a live one. insert() locks the result and checks it is
-  // still alive; a live tetrahedron cannot have changed its vertices since the walk read them.
-  // Without slot reuse (no reclaimer) every dead tetrahedron keeps its DAG children too, and a
-  // walk that ends in a dead one descends the DAG below it, or from the roots when it failed.
-  TetId locate_by_walk(VertexId p, std::array<int, 4>& o) {
-    TetId start = hint_ != kNoTet ? hint_ : walk_start_;
-    hint_ = kNoTet;
-    if (recycle_ && shared_) {
-      for (int attempt = 0; attempt < 64; ++attempt) {
-        if (start == kNoTet || !mesh_.tets[start].alive.load(std::memory_order_acquire)) {
-          start = live_near(start);
-        }
-        const TetId t = walk(p, o, start);
-        if (t != kNoTet && mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
-        ++walk_fallbacks_;
-        if (t != kNoTet) start = t;
-      }
-      return kNoTet;
-    }
-    if (recycle_) {
-      if (start == kNoTet || !mesh_.tets[start].alive.load(std::memory_order_relaxed)) {
-        start = any_live_tetrahedron();
-      }
-      const TetId t = walk(p, o, start);
-      if (t != kNoTet) return t;
-      ++walk_fallbacks_;  // an inexact kernel's cycle: test every live tetrahedron
-      return scan_for(p, o);
-    }
-    if (start == kNoTet) start = mesh_.roots.front();
-    for (int attempt = 0; attempt < 64; ++attempt) {
-      TetId reached = walk(p, o, start);
-      bool retry = false;
-      if (reached != kNoTet) {
-        const bool alive = mesh_.tets[reached].alive.load(std::memory_order_acquire);
-        const TetId t = descend(p, o, reached, retry, alive);
-        if (!retry && t != kNoTet) return t;
-      }
-      ++walk_fallbacks_;
-      retry = false;
-      const TetId t = descend(p, o, kNoTet, retry, false);
-      if (!retry) return t;
-      start = mesh_.roots.front();
-    }
-    return kNoTet;
-  }
-
-  // Remembering stochastic visibility walk (Devillers, Pion and Teillaud 2002): from t, cross a
-  // face that has p strictly on its far side, trying the faces from a random one on and never
-  // the face just crossed (p lies strictly on this side of it). On a Delaunay tetrahedralization
-  // with exact predicates no tetrahedron is visited twice, so a walk longer than the store is an
-  // inexact kernel's cycle or a shared mesh changing under it: kNoTet. Ends with `o` the four
-  // orientations of p against the tetrahedron returned.
-  TetId walk(VertexId p, std::array<int, 4>& o, TetId t) {
-    TetId previous = kNoTet;
-    const std::uint64_t limit =
-        std::min<std::uint64_t>(options_.max_location_steps, mesh_.tets.size() + 64);
-    for (std::uint64_t step = 0; step < limit; ++step) {
-      const Tet& tet = mesh_.tets[t];
-      walk_random_ ^= walk_random_ << 13;
-      walk_random_ ^= walk_random_ >> 7;
-      walk_random_ ^= walk_random_ << 17;
-      const auto first = static_cast<int>(walk_random_ >> 62);
-      int skipped = -1;
-      TetId next = kNoTet;
-      for (int k = 0; k < 4; ++k) {
-        const int f = (first + k) & 3;
-        const TetId across = ref_tet(load_neighbor(tet, f));
-        if (across == previous && skipped < 0) {
-          skipped = f;
-          continue;
-        }
-        o[static_cast<std::size_t>(f)] = orient_replaced(tet, f, p);
-        if (o[static_cast<std::size_t>(f)] < 0) {
-          next = across;
-          break;
-        }
-      }
-      if (next == kNoTet) {
-        location_steps_ += step;
-        // The face skipped is tested too: subdivide needs the exact four signs.
-        if (skipped >= 0) {
-          o[static_cast<std::size_t>(skipped)] = orient_replaced(tet, skipped, p);
-          if (o[static_cast<std::size_t>(skipped)] < 0) {
-            previous = kNoTet;
-            t = ref_tet(load_neighbor(tet, skipped));
-            continue;
-          }
-        }
-        return t;
-      }
-      previous = t;
-      t = next;
-    }
-    location_steps_ += limit;
-    return kNoTet;
-  }
-
-  // A tetrahedron seen alive: the first at or below `near` (or from the top), else above it. With
-  // slots reused almost every slot is alive, so the search is short.
-  TetId live_near(TetId near) const {
-    const auto slots = static_cast<TetId>(mesh_.tets.size());
-    const TetId top = near == kNoTet || near >= slots ? slots : near + 1;
-    for (TetId t = top; t-- > 0;) {
-      if (mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
-    }
-    for (TetId t = top; t < slots; ++t) {
-      if (mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
-    }
-    return mesh_.roots.front();
-  }
-
-  // The owning engine's last resorts: some live tetrahedron, and the live tetrahedron that
-  // contains p by testing every one.
-  TetId any_live_tetrahedron() const {
-    for (TetId t = static_cast<TetId>(mesh_.tets.size()); t-- > 0;) {
-      if (mesh_.tets[t].alive.load(std::memory_order_relaxed)) return t;
-    }
-    return kNoTet;
-  }
-  TetId scan_for(VertexId p, std::array<int, 4>& o) {
-    for (TetId t = 0; t < mesh_.tets.size(); ++t) {
-      if (mesh_.tets[t].alive.load(std::memory_order_relaxed) && contains(t, p, o)) return t;
-    }
-    return kNoTet;
-  }
-
-  // Neighbour references are read by walking threads that hold no lock, so they are written with
-  // release (after the tetrahedron they name is complete) and read with acquire.
-  static FaceRef load_neighbor(const Tet& tet, int f) {
-    return std::atomic_ref<FaceRef>(const_cast<FaceRef&>(tet.neighbor[static_cast<std::size_t>(f)]))
-        .load(std::memory_order_acquire);
-  }
-  static void store_neighbor(Tet& tet, int f, FaceRef r) {
-    std::atomic_ref<FaceRef>(tet.neighbor[static_cast<std::size_t>(f)])
-        .store(r, std::memory_order_release);
-  }
-
-  TetId descend(VertexId p, std::array<int, 4>& o, TetId start, bool& retry,
-                bool start_tested = false) {
-    TetId t = start;
-    bool tested = start_tested;  // whether `o` holds t's orientations
-    if (t == kNoTet) {
-      for (const TetId r : mesh_.roots) {
-        if (contains(r, p, o)) {
-          t = r;
-          tested = true;
-          break;
-        }
-      }
-    }
-    std::uint64_t steps = 0;
-    while (t != kNoTet && !mesh_.tets[t].alive.load(std::memory_order_acquire)) {
-      if (++steps > options_.max_location_steps) return kNoTet;
-      // One snapshot of the children: a rollback of another thread may reset them meanwhile.
-      const Tet& node = mesh_.tets[t];
-      std::array<TetId, 4> children{};
-      int count = 0;
-      for (std::size_t k = 0; k < 4; ++k) {
-        children[k] = node.child[k].load(std::memory_order_acquire);
-        if (children[k] == kNoTet) break;
-        ++count;
-      }
-      if (count == 0) {  // retired by another thread's rollback
-        retry = true;
-        return kNoTet;
-      }
-      // The children cover their parent: when all but the last fail, p is in the last one
-      // (verified at the leaf).
-      TetId next = children[static_cast<std::size_t>(count - 1)];
-      tested = false;
-      for (int k = 0; k + 1 < count; ++k) {
-        if (contains(children[static_cast<std::size_t>(k)], p, o)) {
-          next = children[static_cast<std::size_t>(k)];
-          tested = true;
-          break;
-        }
-      }
-      t = next;
-    }
-    location_steps_ += steps;
-    if (t != kNoTet && !tested && !contains(t, p, o)) {
-      // An inexact kernel's contradiction, or (with threads) a rollback that raced the descent.
-      retry = Sync::kLocks;
-      return kNoTet;
-    }
-    return t;
-  }
-
-  // Adds to scratch_new_ tetrahedron t's copy with the vertex at `position` replaced by v. Its
-  // face `position` is t's face `position`: replace() links it without searching.
-  void push_replaced(TetId t, int position, VertexId v, int parent) {
-    Quad q = mesh_.tets[t].vertex;
-    q[static_cast<std::size_t>(position)] = v;
-    scratch_new_.push_back(q);
-    scratch_parent_.push_back(parent);
-    scratch_source_.push_back({t, position});
-  }
-
-  // What replace() did: Impossible when the new tetrahedra do not close up (nothing written).
-  enum class Replaced { Done, Impossible, GaveUp };
+  using Replaced = typename TetReplacement<Sync>::Replaced;
 
   // 1->4 inside, 2->6 on a face, k->2k on an edge; a point on a vertex is a duplicate.
   Outcome subdivide(TetId t, VertexId p, const std::array<int, 4>& o) {
-    scratch_old_.clear();
-    scratch_new_.clear();
-    scratch_parent_.clear();
-    scratch_source_.clear();
+    replacement_.begin({});
     const int zeros = static_cast<int>(std::count(o.begin(), o.end(), 0));
     if (zeros == 0) {
-      scratch_old_.push_back(t);
-      return finish_split(replace_known(t, kNoTet, kNoTet, -1, p, {0, 1, 2, 3}, 4));
+      replacement_.old_tets().push_back(t);
+      return finish_split(replacement_.replace_known(t, kNoTet, kNoTet, -1, p, {0, 1, 2, 3}, 4));
     }
     if (zeros == 1) {
       const int i0 = static_cast<int>(std::find(o.begin(), o.end(), 0) - o.begin());
       const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(i0)];
       const TetId t2 = ref_tet(across);
       if (!sync_->acquire(t2)) return Outcome::GaveUp;
-      scratch_old_ = {t, t2};
+      replacement_.old_tets() = {t, t2};
       for (int i = 0; i < 4; ++i) {
-        if (i != i0) push_replaced(t, i, p, 0);
-        if (i != ref_face(across)) push_replaced(t2, i, p, 1);
+        if (i != i0) replacement_.push_replaced(t, i, p, 0);
+        if (i != ref_face(across)) replacement_.push_replaced(t2, i, p, 1);
       }
     } else if (zeros == 2) {
       std::array<int, 2> edge{};
@@ -530,10 +263,12 @@ class IncrementalDelaunay {
       const Ring ring = collect_edge_ring(t, a, b);
       if (ring == Ring::GaveUp) return Outcome::GaveUp;
       if (ring == Ring::Broken) return Outcome::Abandoned;
-      for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
-        const Tet& ring_tet = mesh_.tets[scratch_old_[r]];
-        push_replaced(scratch_old_[r], ring_tet.index_of(a), p, static_cast<int>(r));
-        push_replaced(scratch_old_[r], ring_tet.index_of(b), p, static_cast<int>(r));
+      for (std::size_t r = 0; r < replacement_.old_tets().size(); ++r) {
+        const Tet& ring_tet = mesh_.tets[replacement_.old_tets()[r]];
+        replacement_.push_replaced(replacement_.old_tets()[r], ring_tet.index_of(a), p,
+                                   static_cast<int>(r));
+        replacement_.push_replaced(replacement_.old_tets()[r], ring_tet.index_of(b), p,
+                                   static_cast<int>(r));
       }
     } else if (zeros == 3) {
       const int m = static_cast<int>(
@@ -547,27 +282,27 @@ class IncrementalDelaunay {
     } else {
       return Outcome::Abandoned;
     }
-    return finish_split(replace());
+    return finish_split(replacement_.replace());
   }
 
   Outcome finish_split(Replaced done) {
     if (done == Replaced::GaveUp) return Outcome::GaveUp;
     if (done == Replaced::Impossible) return Outcome::Abandoned;
-    stack_.assign(scratch_created_.begin(), scratch_created_.end());
+    stack_.assign(replacement_.created().begin(), replacement_.created().end());
     return Outcome::Inserted;
   }
 
   enum class Ring { Complete, Broken, GaveUp };
 
-  // All tetrahedra around edge ab, starting from t (locked), into scratch_old_, each locked
-  // before its neighbours are read.
+  // All tetrahedra around edge ab, starting from t (locked), into replacement_.old_tets(), each
+  // locked before its neighbours are read.
   Ring collect_edge_ring(TetId t, VertexId a, VertexId b) {
-    scratch_old_.clear();
+    replacement_.old_tets().clear();
     TetId current = t;
     TetId previous = kNoTet;
     for (std::size_t guard = 0; guard < 100000; ++guard) {
       if (!sync_->acquire(current)) return Ring::GaveUp;
-      scratch_old_.push_back(current);
+      replacement_.old_tets().push_back(current);
       const Tet& tet = mesh_.tets[current];
       TetId next = kNoTet;
       for (int i = 0; i < 4; ++i) {
@@ -628,7 +363,7 @@ class IncrementalDelaunay {
     const FaceRef across = tet.neighbor[static_cast<std::size_t>(ip)];
     const TetId t2 = ref_tet(across);
     const VertexId y = mesh_.tets[t2].vertex[static_cast<std::size_t>(ref_face(across))];
-    if (!force && !in_conflict(mesh_.tets[t2], apex)) return Flip::NotApplied;
+    if (!force && !geometry_.in_conflict(mesh_.tets[t2], apex)) return Flip::NotApplied;
     if (++flips > options_.max_flips_per_insertion) return Flip::Exhausted;
     if (!sync_->acquire(t2)) return Flip::GaveUp;
     // Where does segment apex-y pass face F = t minus apex? o[m] is the orientation of t with
@@ -641,7 +376,7 @@ class IncrementalDelaunay {
     std::array<int, 4> o{};
     for (int m = 0; m < 4; ++m) {
       if (m == ip) continue;
-      o[static_cast<std::size_t>(m)] = orient_replaced(tet, m, y);
+      o[static_cast<std::size_t>(m)] = geometry_.orient_replaced(tet, m, y);
       if (o[static_cast<std::size_t>(m)] < 0) {
         negative = m;
         ++negatives;
@@ -742,7 +477,7 @@ class IncrementalDelaunay {
     for (int m = 0; m < 4; ++m) {
       if (m != ip) positions[static_cast<std::size_t>(n++)] = m;
     }
-    const Flip result = finish_flip(replace_known(t, t2, kNoTet, ip, y, positions, n));
+    const Flip result = finish_flip(replacement_.replace_known(t, t2, kNoTet, ip, y, positions, n));
     if (result == Flip::Done) ++stats_.flips.s23;
     return result;
   }
@@ -762,7 +497,7 @@ class IncrementalDelaunay {
     for (int j = 0; j < 4; ++j) {
       if (j != ip && j != m) positions[static_cast<std::size_t>(n++)] = j;
     }
-    const Flip result = finish_flip(replace_known(t, t2, t3, ip, y, positions, n));
+    const Flip result = finish_flip(replacement_.replace_known(t, t2, t3, ip, y, positions, n));
     if (result == Flip::Done) ++stats_.flips.s32;
     return result;
   }
@@ -790,16 +525,17 @@ class IncrementalDelaunay {
     const Tet& tet3 = mesh_.tets[t3];
     const int e0 = tet3.index_of(tet.vertex[static_cast<std::size_t>(edge[0])]);
     const int e1 = tet3.index_of(tet.vertex[static_cast<std::size_t>(edge[1])]);
-    if (orient_replaced(tet3, e0, y) <= 0 || orient_replaced(tet3, e1, y) <= 0) {
+    if (geometry_.orient_replaced(tet3, e0, y) <= 0 ||
+        geometry_.orient_replaced(tet3, e1, y) <= 0) {
       return Flip::NotApplied;
     }
     if (!sync_->acquire(t3) || !sync_->acquire(t4)) return Flip::GaveUp;
     begin_flip({t, t2, t3, t4});
-    push_replaced(t, edge[0], y, -1);
-    push_replaced(t, edge[1], y, -1);
-    push_replaced(t3, e0, y, -1);
-    push_replaced(t3, e1, y, -1);
-    const Flip result = finish_flip(replace());
+    replacement_.push_replaced(t, edge[0], y, -1);
+    replacement_.push_replaced(t, edge[1], y, -1);
+    replacement_.push_replaced(t3, e0, y, -1);
+    replacement_.push_replaced(t3, e1, y, -1);
+    const Flip result = finish_flip(replacement_.replace());
     if (result != Flip::Done) return result;
     if (vm == kInfiniteVertex || w == kInfiniteVertex) {
       ++stats_.flips.s22;
@@ -809,331 +545,14 @@ class IncrementalDelaunay {
     return Flip::Done;
   }
 
-  void begin_flip(std::initializer_list<TetId> old) {
-    scratch_old_.assign(old.begin(), old.end());
-    scratch_new_.clear();
-    scratch_parent_.clear();
-    scratch_source_.clear();
-  }
+  void begin_flip(std::initializer_list<TetId> old) { replacement_.begin(old); }
   // NotApplied when the flip's faces do not close up (inexact kernel only); the mesh is then
   // unchanged.
   Flip finish_flip(Replaced done) {
     if (done == Replaced::GaveUp) return Flip::GaveUp;
     if (done == Replaced::Impossible) return Flip::NotApplied;
-    stack_.insert(stack_.end(), scratch_created_.begin(), scratch_created_.end());
+    stack_.insert(stack_.end(), replacement_.created().begin(), replacement_.created().end());
     return Flip::Done;
-  }
-
-  // A free slot: a recycled one, else the next of this engine's run of fresh slots.
-  TetId allocate_slot() {
-    TetId id = kNoTet;
-    if (!free_slots_.empty()) {
-      id = free_slots_.back();
-      free_slots_.pop_back();
-    } else {
-      if (run_next_ == run_end_) {
-        std::size_t count = 0;
-        run_next_ = mesh_.tets.allocate_run(kSlotRun, count);
-        run_end_ = run_next_ + static_cast<TetId>(count);
-      }
-      id = run_next_++;
-    }
-    if (reclaimer_ != nullptr) attempt_created_.push_back(id);
-    return id;
-  }
-  // A dead slot: free at once for the owning engine, after the epochs for a shared mesh.
-  void release_slot(TetId t) {
-    if (reclaimer_ != nullptr) {
-      reclaimer_->retire(t);
-    } else {
-      free_slots_.push_back(t);
-    }
-  }
-  // 64 slots of 56 bytes: a run spans whole cache lines, and what a run leaves unused at the end
-  // (dead, never alive) is at most 63 slots per thread.
-  static constexpr std::size_t kSlotRun = 64;
-
-  // A face's vertex set as two integers (sorted ids): cheap to compare.
-  struct FaceKey {
-    std::uint64_t high;
-    std::uint32_t low;
-    bool operator==(const FaceKey&) const = default;
-  };
-  struct OpenFace {
-    FaceKey key;
-    FaceRef ref;  // an existing tetrahedron's face, or (is_new) 4 * new index + face
-    bool is_new;
-  };
-  struct FaceMatch {
-    FaceRef ref;
-    bool is_new;
-    bool set;
-  };
-
-  static FaceKey face_key(const Quad& v, int f) {
-    const auto& fv = kFaceVertex[static_cast<std::size_t>(f)];
-    VertexId a = v[static_cast<std::size_t>(fv[0])];
-    VertexId b = v[static_cast<std::size_t>(fv[1])];
-    VertexId c = v[static_cast<std::size_t>(fv[2])];
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    return {(static_cast<std::uint64_t>(a) << 32) | b, c};
-  }
-
-  // Replaces the tetrahedra scratch_old_ by scratch_new_ (same region), linking the new ones to
-  // each other and to the outside by their shared faces. scratch_parent_[j] is the index in
-  // scratch_old_ of new tetrahedron j's only DAG parent, or -1 when it is a child of every old one.
-  // Every face is matched before anything is written: when the new tetrahedra do not close up
-  // (only possible with an inexact kernel's contradictory signs) nothing changes and the result
-  // is false. The new ids land in scratch_created_.
-  Replaced replace() {
-    auto is_old = [&](TetId t) {
-      return std::find(scratch_old_.begin(), scratch_old_.end(), t) != scratch_old_.end();
-    };
-    // Direct links: new tetrahedron j's face `position` is its source's face `position`.
-    matched_.assign(4 * scratch_new_.size(), FaceMatch{0, false, false});
-    claimed_.clear();
-    for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
-      const auto [source, position] = scratch_source_[j];
-      if (source == kNoTet) continue;
-      const FaceRef outside = mesh_.tets[source].neighbor[static_cast<std::size_t>(position)];
-      if (is_old(ref_tet(outside))) continue;
-      matched_[4 * j + static_cast<std::size_t>(position)] = {outside, false, true};
-      claimed_.push_back(face_ref(source, position));
-    }
-    // The other faces of the region's boundary, seen from outside.
-    open_faces_.clear();
-    for (const TetId o : scratch_old_) {
-      const Tet& tet = mesh_.tets[o];
-      for (int f = 0; f < 4; ++f) {
-        const FaceRef outside = tet.neighbor[static_cast<std::size_t>(f)];
-        if (is_old(ref_tet(outside))) continue;
-        if (std::find(claimed_.begin(), claimed_.end(), face_ref(o, f)) != claimed_.end()) continue;
-        open_faces_.push_back({face_key(tet.vertex, f), outside, false});
-      }
-    }
-    // Match the remaining new faces before writing anything.
-    for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
-      for (int f = 0; f < 4; ++f) {
-        const auto self = static_cast<FaceRef>(4 * j + static_cast<std::size_t>(f));
-        if (matched_[self].set) continue;
-        const auto key = face_key(scratch_new_[j], f);
-        const auto match = std::find_if(open_faces_.begin(), open_faces_.end(),
-                                        [&](const OpenFace& of) { return of.key == key; });
-        if (match == open_faces_.end()) {
-          open_faces_.push_back({key, self, true});
-          continue;
-        }
-        matched_[self] = {match->ref, match->is_new, true};
-        if (match->is_new) matched_[match->ref] = {self, true, true};
-        *match = open_faces_.back();
-        open_faces_.pop_back();
-      }
-    }
-    if (!open_faces_.empty()) return Replaced::Impossible;
-    return commit_replacement();
-  }
-
-  // The three most frequent replacements, 1->4, S23 and S32, written directly: new tetrahedron
-  // j is t with the vertex at positions[j] replaced by `put`, and its faces follow from the
-  // adjacency alone, without matching keys. Two new tetrahedra made from t by replacing
-  // positions a and b share the face opposite b in the first and opposite a in the second; a new
-  // tetrahedron's face at its own replaced position is t's face there; its face opposite p (S23,
-  // S32) belongs to t2, across t's face ip, and its face opposite t[m] (S32) to t3, across t's
-  // face m; each is found by the vertex it lacks, t[a]. scratch_old_ holds the old tetrahedra.
-  // When the neighbourhood is not the textbook one (a broken mesh from an inexact kernel: the
-  // vertex put in already in t, old tetrahedra not glued to each other both ways, or an outside
-  // face that belongs to an old tetrahedron) the generic matching of replace() decides.
-  Replaced replace_known(TetId t, TetId t2, TetId t3, int ip, VertexId put,
-                         const std::array<int, 4>& positions, int n) {
-    const Tet& tet = mesh_.tets[t];
-    const auto count = static_cast<std::size_t>(n);
-    auto generic = [&] {
-      scratch_new_.clear();
-      scratch_parent_.clear();
-      scratch_source_.clear();
-      for (std::size_t j = 0; j < count; ++j)
-        push_replaced(t, positions[j], put, t2 == kNoTet ? 0 : -1);
-      return replace();
-    };
-    if (tet.index_of(put) >= 0) return generic();
-    int m = -1;
-    if (t2 != kNoTet) {
-      const Tet& second = mesh_.tets[t2];
-      const int put_at = second.index_of(put);
-      if (put_at < 0 || second.neighbor[static_cast<std::size_t>(put_at)] != face_ref(t, ip)) {
-        return generic();
-      }
-      if (t3 != kNoTet) {
-        m = 6 - ip - positions[0] - positions[1];
-        const int m_at = second.index_of(tet.vertex[static_cast<std::size_t>(m)]);
-        const int p_at = mesh_.tets[t3].index_of(tet.vertex[static_cast<std::size_t>(ip)]);
-        if (m_at < 0 || p_at < 0 ||
-            second.neighbor[static_cast<std::size_t>(m_at)] != face_ref(t3, p_at)) {
-          return generic();
-        }
-      }
-    }
-    // link[j][f]: the outside face across new tetrahedron j's face f, or (is_new) 4 * k + g,
-    // face g of new tetrahedron k.
-    std::array<std::array<FaceMatch, 4>, 4> link{};
-    bool textbook = true;
-    auto outside = [&](std::size_t j, int f, FaceRef ref) {
-      const TetId other = ref_tet(ref);
-      if (other == t || other == t2 || other == t3) textbook = false;
-      link[j][static_cast<std::size_t>(f)] = {ref, false, true};
-    };
-    auto across_from = [&](TetId old, VertexId lacking) {
-      const Tet& o = mesh_.tets[old];
-      const int i = o.index_of(lacking);
-      if (i < 0) {
-        textbook = false;
-        return FaceRef{0};
-      }
-      return o.neighbor[static_cast<std::size_t>(i)];
-    };
-    for (std::size_t j = 0; j < count; ++j) {
-      const int a = positions[j];
-      outside(j, a, tet.neighbor[static_cast<std::size_t>(a)]);
-      for (std::size_t k = 0; k < count; ++k) {
-        if (k != j) {
-          link[j][static_cast<std::size_t>(positions[k])] = {static_cast<FaceRef>(4 * k + a), true,
-                                                             true};
-        }
-      }
-      const VertexId lost = tet.vertex[static_cast<std::size_t>(a)];
-      if (t2 != kNoTet) outside(j, ip, across_from(t2, lost));
-      if (t3 != kNoTet) outside(j, m, across_from(t3, lost));
-    }
-    if (!textbook) return generic();
-
-    // As in commit_replacement: lock every tetrahedron written, log it before its first write.
-    if constexpr (Sync::kLocks) {
-      for (std::size_t j = 0; j < count; ++j) {
-        for (const FaceMatch& l : link[j]) {
-          if (!l.is_new && !sync_->acquire(ref_tet(l.ref))) return Replaced::GaveUp;
-        }
-      }
-      for (std::size_t j = 0; j < count; ++j) {
-        for (const FaceMatch& l : link[j]) {
-          if (!l.is_new) sync_->before_write(ref_tet(l.ref));
-        }
-      }
-      for (const TetId o : scratch_old_) sync_->before_write(o);
-    }
-    std::array<TetId, 4> ids{};
-    for (std::size_t j = 0; j < count; ++j) {
-      ids[j] = allocate_slot();
-      Tet& fresh = mesh_.tets[ids[j]];
-      fresh.vertex = tet.vertex;
-      fresh.vertex[static_cast<std::size_t>(positions[j])] = put;
-      if (!recycle_) {
-        for (auto& c : fresh.child) c.store(kNoTet, std::memory_order_relaxed);
-      }
-      sync_->created(ids[j]);
-    }
-    // The new tetrahedra's own references first, then the outside's references to them
-    // (release): a walking thread that reaches a new tetrahedron finds all four set.
-    for (std::size_t j = 0; j < count; ++j) {
-      Tet& fresh = mesh_.tets[ids[j]];
-      for (int f = 0; f < 4; ++f) {
-        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
-        store_neighbor(fresh, f, l.is_new ? face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)) : l.ref);
-      }
-    }
-    for (std::size_t j = 0; j < count; ++j) {
-      for (int f = 0; f < 4; ++f) {
-        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
-        if (!l.is_new) {
-          store_neighbor(mesh_.tets[ref_tet(l.ref)], ref_face(l.ref), face_ref(ids[j], f));
-        }
-      }
-    }
-    // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
-    for (const TetId o : scratch_old_) {
-      Tet& old = mesh_.tets[o];
-      if (recycle_) {
-        old.alive.store(false, std::memory_order_release);
-        retired_.push_back(o);
-        sync_->killed(o);
-        continue;
-      }
-      for (std::size_t j = 0; j < count; ++j) old.child[j].store(ids[j], std::memory_order_release);
-      old.alive.store(false, std::memory_order_release);
-      sync_->killed(o);
-    }
-    scratch_created_.assign(ids.begin(), ids.begin() + n);
-    for (std::size_t j = 0; j < count; ++j) {
-      mesh_.tets[ids[j]].alive.store(true, std::memory_order_release);
-    }
-    return Replaced::Done;
-  }
-
-  Replaced commit_replacement() {
-    // Every tetrahedron written below is locked first: the outside neighbours get new back
-    // references (the old ones are locked already), and the undo log sees each before its first
-    // write.
-    if constexpr (Sync::kLocks) {
-      for (const FaceMatch& m : matched_) {
-        if (!m.is_new && !sync_->acquire(ref_tet(m.ref))) return Replaced::GaveUp;
-      }
-      for (const FaceMatch& m : matched_) {
-        if (!m.is_new) sync_->before_write(ref_tet(m.ref));
-      }
-      for (const TetId o : scratch_old_) sync_->before_write(o);
-    }
-
-    scratch_created_.clear();
-    for (const Quad& q : scratch_new_) {
-      const TetId id = allocate_slot();
-      Tet& tet = mesh_.tets[id];
-      tet.vertex = q;
-      for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
-      sync_->created(id);  // locked by this thread before anyone can reach it
-      scratch_created_.push_back(id);
-    }
-    // The new tetrahedra's own references first, then the outside's references to them.
-    for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
-      Tet& tet = mesh_.tets[scratch_created_[j]];
-      for (int f = 0; f < 4; ++f) {
-        const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
-        store_neighbor(
-            tet, f, m.is_new ? face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref)) : m.ref);
-      }
-    }
-    for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
-      for (int f = 0; f < 4; ++f) {
-        const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
-        if (!m.is_new) {
-          store_neighbor(mesh_.tets[ref_tet(m.ref)], ref_face(m.ref),
-                         face_ref(scratch_created_[j], f));
-        }
-      }
-    }
-    // History: children first (release), then the old tetrahedra die, then the new ones live.
-    // A recycling engine keeps no history: the old slots are reused after this insertion.
-    for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
-      Tet& old = mesh_.tets[scratch_old_[r]];
-      if (recycle_) {
-        old.alive.store(false, std::memory_order_release);
-        retired_.push_back(scratch_old_[r]);
-        sync_->killed(scratch_old_[r]);
-        continue;
-      }
-      int slot = 0;
-      for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
-        if (scratch_parent_[j] == -1 || scratch_parent_[j] == static_cast<int>(r)) {
-          old.child[static_cast<std::size_t>(slot++)].store(scratch_created_[j],
-                                                            std::memory_order_release);
-        }
-      }
-      old.alive.store(false, std::memory_order_release);
-      sync_->killed(scratch_old_[r]);
-    }
-    for (const TetId id : scratch_created_)
-      mesh_.tets[id].alive.store(true, std::memory_order_release);
-    return Replaced::Done;
   }
 
   std::unique_ptr<SharedMesh> owned_;  // the sequential engine's own mesh
@@ -1142,36 +561,16 @@ class IncrementalDelaunay {
   TriangulationStats& stats_;
   NoSync own_sync_;
   Sync* sync_;
-  TetId hint_ = kNoTet;
-  // Walk mode: walk_ locates by walking; recycle_ (the owning engine in walk mode) reuses the
-  // slots of dead tetrahedra, which go to retired_ when they die and to free_slots_ when the
-  // insertion that killed them ends (its legalization stack may still name them until then).
+  // Walk mode: walk_ locates by walking; recycle_ reuses the slots of dead tetrahedra (the
+  // owning engine in walk mode, and a parallel thread in walk mode with a reclaimer).
   bool walk_;
   bool recycle_;
-  bool shared_;                         // other threads may change the mesh meanwhile
-  SlotReclaimer* reclaimer_ = nullptr;  // a shared mesh's slot reuse (parallel walk mode)
-  std::vector<TetId> attempt_created_;  // slots this insertion attempt took (reclaimer only)
-  TetId walk_start_ = kNoTet;
-  std::uint64_t walk_random_ = (options_.seed * 0x9E3779B97F4A7C15ULL) | 1;  // xorshift state
-  std::uint64_t walk_fallbacks_ = 0;
-  std::vector<TetId> free_slots_;
-  TetId run_next_ = 0;  // this engine's run of fresh slots: [run_next_, run_end_)
-  TetId run_end_ = 0;
-  std::vector<TetId> retired_;
-  std::uint64_t predicate_calls_ = 0;
-  std::uint64_t location_steps_ = 0;
+  MeshGeometry<K> geometry_;
+  SlotAllocator slots_;
+  TetReplacement<Sync> replacement_;
+  PointLocator<K> locator_;
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)
-
-  // Scratch buffers reused across insertions (no allocation per insertion once warm).
-  std::vector<TetId> scratch_old_;
-  std::vector<Quad> scratch_new_;
-  std::vector<int> scratch_parent_;
-  std::vector<TetId> scratch_created_;
-  std::vector<OpenFace> open_faces_;
-  std::vector<FaceMatch> matched_;
-  std::vector<FaceRef> claimed_;
-  std::vector<std::pair<TetId, int>> scratch_source_;  // (old tetrahedron, replaced position)
-  std::vector<TetId> stack_;
+  std::vector<TetId> stack_;  // legalization: new tetrahedra whose face opposite p is unchecked
 };
 
 }  // namespace dtlab::engine

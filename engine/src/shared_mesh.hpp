@@ -3,6 +3,7 @@
 // roots and the interior point O. Written by one thread in start(), read-only afterwards except
 // for the store, whose records follow the locking rules of docs/design.md.
 #include <algorithm>
+#include <atomic>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,18 @@ struct SharedMesh {
     return out;
   }
 };
+
+// Neighbour references are read by walking threads that hold no lock, so they are written with
+// release (after the tetrahedron they name is complete) and read with acquire (plain moves on
+// x86).
+inline FaceRef load_neighbor(const Tet& tet, int f) {
+  return std::atomic_ref<FaceRef>(const_cast<FaceRef&>(tet.neighbor[static_cast<std::size_t>(f)]))
+      .load(std::memory_order_acquire);
+}
+inline void store_neighbor(Tet& tet, int f, FaceRef r) {
+  std::atomic_ref<FaceRef>(tet.neighbor[static_cast<std::size_t>(f)])
+      .store(r, std::memory_order_release);
+}
 
 // What a lock refused during legalization leads to: GiveUp (undo the insertion: detect, prevent),
 // Continue (a burglary victim whose part of the mesh is intact) or Stop (a burglary victim whose

@@ -1,0 +1,357 @@
+#pragma once
+// Replacing a set of tetrahedra by new ones that fill the same region: every split and flip of
+// the engine ends here. The contract: the caller names the old tetrahedra (old_tets(), all
+// locked by the caller when there are locks) and the new ones, each an old one with one vertex
+// replaced (push_replaced) or given whole (push_new); replace() matches every face before it
+// writes anything (Impossible: the new ones do not close up, nothing written; GaveUp: a lock was
+// refused, nothing written), then writes the new records, the neighbour references (new ones
+// complete before the outside links to them), the DAG children, the deaths and the births.
+// created() lists the new ids. replace_known() is the direct version for 1->4, S23 and S32.
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <initializer_list>
+#include <utility>
+#include <vector>
+
+#include "dtlab/engine/tet_mesh.hpp"
+#include "shared_mesh.hpp"
+#include "slot_allocator.hpp"
+
+namespace dtlab::engine {
+
+template <class Sync>
+class TetReplacement {
+ public:
+  enum class Replaced { Done, Impossible, GaveUp };
+
+  // keep_dag: the old tetrahedra get the new ones as DAG children (not when slots are reused).
+  TetReplacement(SharedMesh& mesh, Sync& sync, SlotAllocator& slots, bool keep_dag)
+      : mesh_(mesh), sync_(sync), slots_(slots), recycle_(!keep_dag) {}
+
+  // Starts a replacement of `old` (or of what the caller then puts in old_tets()).
+  void begin(std::initializer_list<TetId> old) {
+    scratch_old_.assign(old.begin(), old.end());
+    scratch_new_.clear();
+    scratch_parent_.clear();
+    scratch_source_.clear();
+  }
+  std::vector<TetId>& old_tets() { return scratch_old_; }
+  [[nodiscard]] const std::vector<TetId>& created() const { return scratch_created_; }
+
+  // Adds to scratch_new_ tetrahedron t's copy with the vertex at `position` replaced by v. Its
+  // face `position` is t's face `position`: replace() links it without searching.
+  void push_replaced(TetId t, int position, VertexId v, int parent) {
+    Quad q = mesh_.tets[t].vertex;
+    q[static_cast<std::size_t>(position)] = v;
+    scratch_new_.push_back(q);
+    scratch_parent_.push_back(parent);
+    scratch_source_.push_back({t, position});
+  }
+  // A new tetrahedron given whole, child of every old one, linked by matching only.
+  void push_new(const Quad& q) {
+    scratch_new_.push_back(q);
+    scratch_parent_.push_back(-1);
+    scratch_source_.push_back({kNoTet, 0});
+  }
+
+  // Replaces the tetrahedra scratch_old_ by scratch_new_ (same region), linking the new ones to
+  // each other and to the outside by their shared faces. scratch_parent_[j] is the index in
+  // scratch_old_ of new tetrahedron j's only DAG parent, or -1 when it is a child of every old one.
+  // Every face is matched before anything is written: when the new tetrahedra do not close up
+  // (only possible with an inexact kernel's contradictory signs) nothing changes and the result
+  // is false. The new ids land in scratch_created_.
+  Replaced replace() {
+    auto is_old = [&](TetId t) {
+      return std::find(scratch_old_.begin(), scratch_old_.end(), t) != scratch_old_.end();
+    };
+    // Direct links: new tetrahedron j's face `position` is its source's face `position`.
+    matched_.assign(4 * scratch_new_.size(), FaceMatch{0, false, false});
+    claimed_.clear();
+    for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
+      const auto [source, position] = scratch_source_[j];
+      if (source == kNoTet) continue;
+      const FaceRef outside = mesh_.tets[source].neighbor[static_cast<std::size_t>(position)];
+      if (is_old(ref_tet(outside))) continue;
+      matched_[4 * j + static_cast<std::size_t>(position)] = {outside, false, true};
+      claimed_.push_back(face_ref(source, position));
+    }
+    // The other faces of the region's boundary, seen from outside.
+    open_faces_.clear();
+    for (const TetId o : scratch_old_) {
+      const Tet& tet = mesh_.tets[o];
+      for (int f = 0; f < 4; ++f) {
+        const FaceRef outside = tet.neighbor[static_cast<std::size_t>(f)];
+        if (is_old(ref_tet(outside))) continue;
+        if (std::find(claimed_.begin(), claimed_.end(), face_ref(o, f)) != claimed_.end()) continue;
+        open_faces_.push_back({face_key(tet.vertex, f), outside, false});
+      }
+    }
+    // Match the remaining new faces before writing anything.
+    for (std::size_t j = 0; j < scratch_new_.size(); ++j) {
+      for (int f = 0; f < 4; ++f) {
+        const auto self = static_cast<FaceRef>(4 * j + static_cast<std::size_t>(f));
+        if (matched_[self].set) continue;
+        const auto key = face_key(scratch_new_[j], f);
+        const auto match = std::find_if(open_faces_.begin(), open_faces_.end(),
+                                        [&](const OpenFace& of) { return of.key == key; });
+        if (match == open_faces_.end()) {
+          open_faces_.push_back({key, self, true});
+          continue;
+        }
+        matched_[self] = {match->ref, match->is_new, true};
+        if (match->is_new) matched_[match->ref] = {self, true, true};
+        *match = open_faces_.back();
+        open_faces_.pop_back();
+      }
+    }
+    if (!open_faces_.empty()) return Replaced::Impossible;
+    return commit_replacement();
+  }
+
+  // The three most frequent replacements, 1->4, S23 and S32, written directly: new tetrahedron
+  // j is t with the vertex at positions[j] replaced by `put`, and its faces follow from the
+  // adjacency alone, without matching keys. Two new tetrahedra made from t by replacing
+  // positions a and b share the face opposite b in the first and opposite a in the second; a new
+  // tetrahedron's face at its own replaced position is t's face there; its face opposite p (S23,
+  // S32) belongs to t2, across t's face ip, and its face opposite t[m] (S32) to t3, across t's
+  // face m; each is found by the vertex it lacks, t[a]. scratch_old_ holds the old tetrahedra.
+  // When the neighbourhood is not the textbook one (a broken mesh from an inexact kernel: the
+  // vertex put in already in t, old tetrahedra not glued to each other both ways, or an outside
+  // face that belongs to an old tetrahedron) the generic matching of replace() decides.
+  Replaced replace_known(TetId t, TetId t2, TetId t3, int ip, VertexId put,
+                         const std::array<int, 4>& positions, int n) {
+    const Tet& tet = mesh_.tets[t];
+    const auto count = static_cast<std::size_t>(n);
+    auto generic = [&] {
+      scratch_new_.clear();
+      scratch_parent_.clear();
+      scratch_source_.clear();
+      for (std::size_t j = 0; j < count; ++j)
+        push_replaced(t, positions[j], put, t2 == kNoTet ? 0 : -1);
+      return replace();
+    };
+    if (tet.index_of(put) >= 0) return generic();
+    int m = -1;
+    if (t2 != kNoTet) {
+      const Tet& second = mesh_.tets[t2];
+      const int put_at = second.index_of(put);
+      if (put_at < 0 || second.neighbor[static_cast<std::size_t>(put_at)] != face_ref(t, ip)) {
+        return generic();
+      }
+      if (t3 != kNoTet) {
+        m = 6 - ip - positions[0] - positions[1];
+        const int m_at = second.index_of(tet.vertex[static_cast<std::size_t>(m)]);
+        const int p_at = mesh_.tets[t3].index_of(tet.vertex[static_cast<std::size_t>(ip)]);
+        if (m_at < 0 || p_at < 0 ||
+            second.neighbor[static_cast<std::size_t>(m_at)] != face_ref(t3, p_at)) {
+          return generic();
+        }
+      }
+    }
+    // link[j][f]: the outside face across new tetrahedron j's face f, or (is_new) 4 * k + g,
+    // face g of new tetrahedron k.
+    std::array<std::array<FaceMatch, 4>, 4> link{};
+    bool textbook = true;
+    auto outside = [&](std::size_t j, int f, FaceRef ref) {
+      const TetId other = ref_tet(ref);
+      if (other == t || other == t2 || other == t3) textbook = false;
+      link[j][static_cast<std::size_t>(f)] = {ref, false, true};
+    };
+    auto across_from = [&](TetId old, VertexId lacking) {
+      const Tet& o = mesh_.tets[old];
+      const int i = o.index_of(lacking);
+      if (i < 0) {
+        textbook = false;
+        return FaceRef{0};
+      }
+      return o.neighbor[static_cast<std::size_t>(i)];
+    };
+    for (std::size_t j = 0; j < count; ++j) {
+      const int a = positions[j];
+      outside(j, a, tet.neighbor[static_cast<std::size_t>(a)]);
+      for (std::size_t k = 0; k < count; ++k) {
+        if (k != j) {
+          link[j][static_cast<std::size_t>(positions[k])] = {static_cast<FaceRef>(4 * k + a), true,
+                                                             true};
+        }
+      }
+      const VertexId lost = tet.vertex[static_cast<std::size_t>(a)];
+      if (t2 != kNoTet) outside(j, ip, across_from(t2, lost));
+      if (t3 != kNoTet) outside(j, m, across_from(t3, lost));
+    }
+    if (!textbook) return generic();
+
+    // As in commit_replacement: lock every tetrahedron written, log it before its first write.
+    if constexpr (Sync::kLocks) {
+      for (std::size_t j = 0; j < count; ++j) {
+        for (const FaceMatch& l : link[j]) {
+          if (!l.is_new && !sync_.acquire(ref_tet(l.ref))) return Replaced::GaveUp;
+        }
+      }
+      for (std::size_t j = 0; j < count; ++j) {
+        for (const FaceMatch& l : link[j]) {
+          if (!l.is_new) sync_.before_write(ref_tet(l.ref));
+        }
+      }
+      for (const TetId o : scratch_old_) sync_.before_write(o);
+    }
+    std::array<TetId, 4> ids{};
+    for (std::size_t j = 0; j < count; ++j) {
+      ids[j] = slots_.allocate();
+      Tet& fresh = mesh_.tets[ids[j]];
+      fresh.vertex = tet.vertex;
+      fresh.vertex[static_cast<std::size_t>(positions[j])] = put;
+      if (!recycle_) {
+        for (auto& c : fresh.child) c.store(kNoTet, std::memory_order_relaxed);
+      }
+      sync_.created(ids[j]);
+    }
+    // The new tetrahedra's own references first, then the outside's references to them
+    // (release): a walking thread that reaches a new tetrahedron finds all four set.
+    for (std::size_t j = 0; j < count; ++j) {
+      Tet& fresh = mesh_.tets[ids[j]];
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
+        store_neighbor(fresh, f, l.is_new ? face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)) : l.ref);
+      }
+    }
+    for (std::size_t j = 0; j < count; ++j) {
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
+        if (!l.is_new) {
+          store_neighbor(mesh_.tets[ref_tet(l.ref)], ref_face(l.ref), face_ref(ids[j], f));
+        }
+      }
+    }
+    // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
+    for (const TetId o : scratch_old_) {
+      Tet& old = mesh_.tets[o];
+      if (recycle_) {
+        old.alive.store(false, std::memory_order_release);
+        slots_.retire(o);
+        sync_.killed(o);
+        continue;
+      }
+      for (std::size_t j = 0; j < count; ++j) old.child[j].store(ids[j], std::memory_order_release);
+      old.alive.store(false, std::memory_order_release);
+      sync_.killed(o);
+    }
+    scratch_created_.assign(ids.begin(), ids.begin() + n);
+    for (std::size_t j = 0; j < count; ++j) {
+      mesh_.tets[ids[j]].alive.store(true, std::memory_order_release);
+    }
+    return Replaced::Done;
+  }
+
+  Replaced commit_replacement() {
+    // Every tetrahedron written below is locked first: the outside neighbours get new back
+    // references (the old ones are locked already), and the undo log sees each before its first
+    // write.
+    if constexpr (Sync::kLocks) {
+      for (const FaceMatch& m : matched_) {
+        if (!m.is_new && !sync_.acquire(ref_tet(m.ref))) return Replaced::GaveUp;
+      }
+      for (const FaceMatch& m : matched_) {
+        if (!m.is_new) sync_.before_write(ref_tet(m.ref));
+      }
+      for (const TetId o : scratch_old_) sync_.before_write(o);
+    }
+
+    scratch_created_.clear();
+    for (const Quad& q : scratch_new_) {
+      const TetId id = slots_.allocate();
+      Tet& tet = mesh_.tets[id];
+      tet.vertex = q;
+      for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
+      sync_.created(id);  // locked by this thread before anyone can reach it
+      scratch_created_.push_back(id);
+    }
+    // The new tetrahedra's own references first, then the outside's references to them.
+    for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
+      Tet& tet = mesh_.tets[scratch_created_[j]];
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
+        store_neighbor(
+            tet, f, m.is_new ? face_ref(scratch_created_[ref_tet(m.ref)], ref_face(m.ref)) : m.ref);
+      }
+    }
+    for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
+      for (int f = 0; f < 4; ++f) {
+        const FaceMatch m = matched_[4 * j + static_cast<std::size_t>(f)];
+        if (!m.is_new) {
+          store_neighbor(mesh_.tets[ref_tet(m.ref)], ref_face(m.ref),
+                         face_ref(scratch_created_[j], f));
+        }
+      }
+    }
+    // History: children first (release), then the old tetrahedra die, then the new ones live.
+    // A recycling engine keeps no history: the old slots are reused after this insertion.
+    for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
+      Tet& old = mesh_.tets[scratch_old_[r]];
+      if (recycle_) {
+        old.alive.store(false, std::memory_order_release);
+        slots_.retire(scratch_old_[r]);
+        sync_.killed(scratch_old_[r]);
+        continue;
+      }
+      int slot = 0;
+      for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
+        if (scratch_parent_[j] == -1 || scratch_parent_[j] == static_cast<int>(r)) {
+          old.child[static_cast<std::size_t>(slot++)].store(scratch_created_[j],
+                                                            std::memory_order_release);
+        }
+      }
+      old.alive.store(false, std::memory_order_release);
+      sync_.killed(scratch_old_[r]);
+    }
+    for (const TetId id : scratch_created_)
+      mesh_.tets[id].alive.store(true, std::memory_order_release);
+    return Replaced::Done;
+  }
+
+ private:
+  // A face's vertex set as two integers (sorted ids): cheap to compare.
+  struct FaceKey {
+    std::uint64_t high;
+    std::uint32_t low;
+    bool operator==(const FaceKey&) const = default;
+  };
+  struct OpenFace {
+    FaceKey key;
+    FaceRef ref;  // an existing tetrahedron's face, or (is_new) 4 * new index + face
+    bool is_new;
+  };
+  struct FaceMatch {
+    FaceRef ref;
+    bool is_new;
+    bool set;
+  };
+
+  static FaceKey face_key(const Quad& v, int f) {
+    const auto& fv = kFaceVertex[static_cast<std::size_t>(f)];
+    VertexId a = v[static_cast<std::size_t>(fv[0])];
+    VertexId b = v[static_cast<std::size_t>(fv[1])];
+    VertexId c = v[static_cast<std::size_t>(fv[2])];
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return {(static_cast<std::uint64_t>(a) << 32) | b, c};
+  }
+
+  SharedMesh& mesh_;
+  Sync& sync_;
+  SlotAllocator& slots_;
+  bool recycle_;
+  std::vector<TetId> scratch_old_;
+  std::vector<Quad> scratch_new_;
+  std::vector<int> scratch_parent_;  // index in scratch_old_ of the only DAG parent, or -1: all
+  std::vector<std::pair<TetId, int>> scratch_source_;  // (old tetrahedron, replaced position)
+  std::vector<TetId> scratch_created_;
+  std::vector<OpenFace> open_faces_;
+  std::vector<FaceMatch> matched_;
+  std::vector<FaceRef> claimed_;
+};
+
+}  // namespace dtlab::engine
