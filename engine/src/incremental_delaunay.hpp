@@ -70,6 +70,7 @@ class IncrementalDelaunay {
         replacement_(mesh_, *sync_, slots_, !recycle_),
         locator_(mesh_, options, geometry_, walk_, recycle_, false, Sync::kLocks) {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
+    mesh_.tets.keep_children(!walk_);
   }
 
   // One inserting thread of a parallel method, on a shared mesh.
@@ -196,6 +197,10 @@ class IncrementalDelaunay {
 
   std::vector<Tetrahedron> finite_tetrahedra(VertexId vertex_limit) const {
     return mesh_.finite_tetrahedra(vertex_limit, duplicates_);
+  }
+  // The same, releasing the mesh as it goes (the engine is done afterwards).
+  std::vector<Tetrahedron> take_finite_tetrahedra(VertexId vertex_limit) {
+    return mesh_.take_finite_tetrahedra(vertex_limit, duplicates_);
   }
   SharedMesh& mesh() { return mesh_; }
   [[nodiscard]] const std::vector<std::pair<VertexId, VertexId>>& duplicates() const {
@@ -436,9 +441,10 @@ class IncrementalDelaunay {
         for (int f = 0; f < 4; ++f) faces.emplace_back(t, f);
         continue;
       }
-      for (const auto& c : tet.child) {
+      if (everything || !mesh_.tets.has_children()) continue;  // walk mode: no DAG
+      for (const auto& c : mesh_.tets.children(t)) {
         const TetId child = c.load(std::memory_order_acquire);
-        if (child != kNoTet && !everything) pending.push_back(child);
+        if (child != kNoTet) pending.push_back(child);
       }
     }
     std::uint64_t flips = 0;

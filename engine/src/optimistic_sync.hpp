@@ -203,7 +203,10 @@ class OptimisticSync {
     if (!logged_or_created_.insert(t)) return;
     const Tet& tet = mesh_.tets[t];
     Saved s{t, tet.neighbor, {}, tet.alive.load(std::memory_order_relaxed)};
-    for (std::size_t i = 0; i < 4; ++i) s.child[i] = tet.child[i].load(std::memory_order_relaxed);
+    if (mesh_.tets.has_children()) {
+      const auto& children = mesh_.tets.children(t);
+      for (std::size_t i = 0; i < 4; ++i) s.child[i] = children[i].load(std::memory_order_relaxed);
+    }
     log_.push_back(s);
   }
 
@@ -247,12 +250,16 @@ class OptimisticSync {
         std::atomic_ref<FaceRef>(tet.neighbor[f]).store(it->neighbor[f], std::memory_order_release);
       }
       for (std::size_t i = 0; i < 4; ++i)
-        tet.child[i].store(it->child[i], std::memory_order_relaxed);
+        if (mesh_.tets.has_children()) {
+          mesh_.tets.children(it->tet)[i].store(it->child[i], std::memory_order_relaxed);
+        }
       tet.alive.store(it->alive, std::memory_order_release);
     }
     for (const TetId t : created_) {
       Tet& tet = mesh_.tets[t];
-      for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
+      if (mesh_.tets.has_children()) {
+        for (auto& c : mesh_.tets.children(t)) c.store(kNoTet, std::memory_order_relaxed);
+      }
       tet.alive.store(false, std::memory_order_release);
     }
     log_.clear();

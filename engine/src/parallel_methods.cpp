@@ -288,6 +288,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   const int threads = std::max(1, options.threads);
   SharedMesh mesh(points);
   if (options.max_tetrahedra > 0) mesh.tets.set_capacity(options.max_tetrahedra);
+  mesh.tets.keep_children(options.location != Location::Walk);  // the walk mode keeps no DAG
   TriangulationStats start_stats;
   NoSync no_sync;
   IncrementalDelaunay<K, NoSync>(mesh, options, start_stats, no_sync)
@@ -549,7 +550,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   }
   if (options.repair == Repair::Splay)
     splay_shared_mesh(mesh, {}, options.kernel != KernelKind::Fast, stats.splay);
-  return mesh.finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
+  return mesh.take_finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
 }
 
 #define DTLAB_INSTANTIATE(K)                                                      \

@@ -170,11 +170,15 @@ class PointLocator {
   TetId live_near(TetId near) const {
     const auto slots = static_cast<TetId>(mesh_.tets.size());
     const TetId top = near == kNoTet || near >= slots ? slots : near + 1;
+    // Ids taken by other threads may lie in blocks not installed yet: those are skipped.
+    auto alive = [&](TetId t) {
+      return mesh_.tets.has_block(t) && mesh_.tets[t].alive.load(std::memory_order_acquire);
+    };
     for (TetId t = top; t-- > 0;) {
-      if (mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
+      if (alive(t)) return t;
     }
     for (TetId t = top; t < slots; ++t) {
-      if (mesh_.tets[t].alive.load(std::memory_order_acquire)) return t;
+      if (alive(t)) return t;
     }
     return mesh_.roots.front();
   }
@@ -211,12 +215,16 @@ class PointLocator {
     std::uint64_t steps = 0;
     while (t != kNoTet && !mesh_.tets[t].alive.load(std::memory_order_acquire)) {
       if (++steps > options_.max_location_steps) return kNoTet;
+      if (!mesh_.tets.has_children()) {  // walk mode keeps no DAG to descend
+        retry = true;
+        return kNoTet;
+      }
       // One snapshot of the children: a rollback of another thread may reset them meanwhile.
-      const Tet& node = mesh_.tets[t];
+      const auto& node_children = mesh_.tets.children(t);
       std::array<TetId, 4> children{};
       int count = 0;
       for (std::size_t k = 0; k < 4; ++k) {
-        children[k] = node.child[k].load(std::memory_order_acquire);
+        children[k] = node_children[k].load(std::memory_order_acquire);
         if (children[k] == kNoTet) break;
         ++count;
       }

@@ -17,7 +17,7 @@ struct SharedMesh {
   explicit SharedMesh(const std::vector<Point3>& input) : points(input) {}
 
   const std::vector<Point3>& points;
-  TetStore tets;
+  mutable TetStore tets;  // mutable: take_finite_tetrahedra releases it
   std::vector<TetId> roots;
   predicates::Tetrahedron4 first{};  // O is the centroid of these four points...
   Point3 origin{0, 0, 0};            // ...or this point, strictly inside them, when
@@ -28,6 +28,20 @@ struct SharedMesh {
   // so that the output does not depend on the insertion order.
   std::vector<Tetrahedron> finite_tetrahedra(
       VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates) const {
+    return collect(vertex_limit, duplicates, false);
+  }
+  // The same, releasing the store's blocks as they are read: the output does not coexist with
+  // the whole store (at 1M uniform points it is 108 bytes per point). The store is unusable
+  // afterwards; the last thing a run does.
+  std::vector<Tetrahedron> take_finite_tetrahedra(
+      VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates) {
+    return collect(vertex_limit, duplicates, true);
+  }
+
+ private:
+  std::vector<Tetrahedron> collect(VertexId vertex_limit,
+                                   const std::vector<std::pair<VertexId, VertexId>>& duplicates,
+                                   bool release) const {
     std::vector<VertexId> representative;
     if (!duplicates.empty()) {
       representative.resize(points.size());
@@ -38,19 +52,28 @@ struct SharedMesh {
         representative[vertex] = std::min(representative[vertex], duplicate);
       }
     }
-    std::vector<Tetrahedron> out;
+    auto kept = [&](const Tet& t) {
+      return t.alive.load(std::memory_order_acquire) && !t.is_infinite() &&
+             t.vertex[0] < vertex_limit && t.vertex[1] < vertex_limit &&
+             t.vertex[2] < vertex_limit && t.vertex[3] < vertex_limit;
+    };
     const std::size_t n = tets.size();
+    std::vector<Tetrahedron> out;
+    if (release) {  // exactly the size needed: no growth while blocks are let go
+      std::size_t count = 0;
+      for (std::size_t i = 0; i < n; ++i) count += kept(tets[static_cast<TetId>(i)]) ? 1 : 0;
+      out.reserve(count);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const Tet& t = tets[static_cast<TetId>(i)];
-      if (!t.alive.load(std::memory_order_acquire) || t.is_infinite()) continue;
-      if (t.vertex[0] >= vertex_limit || t.vertex[1] >= vertex_limit ||
-          t.vertex[2] >= vertex_limit || t.vertex[3] >= vertex_limit) {
-        continue;
+      if (kept(t)) {
+        out.push_back(t.vertex);
+        if (!representative.empty()) {
+          for (auto& v : out.back()) v = representative[v];
+        }
       }
-      out.push_back(t.vertex);
-      if (!representative.empty()) {
-        for (auto& v : out.back()) v = representative[v];
-      }
+      const bool block_ends = (i + 1) % TetStore::kBlockSize == 0 || i + 1 == n;
+      if (release && block_ends) tets.release_block_of(static_cast<TetId>(i));
     }
     return out;
   }

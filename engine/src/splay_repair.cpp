@@ -392,7 +392,9 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     ids[j] = mesh.tets.allocate();
     Tet& tet = mesh.tets[ids[j]];
     tet.vertex = created[j];
-    for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
+    if (mesh.tets.has_children()) {
+      for (auto& c : mesh.tets.children(ids[j])) c.store(kNoTet, std::memory_order_relaxed);
+    }
     tet.lock_owner.store(0, std::memory_order_relaxed);
   }
   auto resolve = [&](const FaceEntry& e) {

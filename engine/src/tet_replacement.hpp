@@ -28,7 +28,11 @@ class TetReplacement {
 
   // keep_dag: the old tetrahedra get the new ones as DAG children (not when slots are reused).
   TetReplacement(SharedMesh& mesh, Sync& sync, SlotAllocator& slots, bool keep_dag)
-      : mesh_(mesh), sync_(sync), slots_(slots), recycle_(!keep_dag) {}
+      : mesh_(mesh),
+        sync_(sync),
+        slots_(slots),
+        recycle_(!keep_dag),
+        dag_(keep_dag && mesh.tets.has_children()) {}
 
   // Starts a replacement of `old` (or of what the caller then puts in old_tets()).
   void begin(std::initializer_list<TetId> old) {
@@ -203,8 +207,8 @@ class TetReplacement {
       Tet& fresh = mesh_.tets[ids[j]];
       fresh.vertex = tet.vertex;
       fresh.vertex[static_cast<std::size_t>(positions[j])] = put;
-      if (!recycle_) {
-        for (auto& c : fresh.child) c.store(kNoTet, std::memory_order_relaxed);
+      if (dag_) {
+        for (auto& c : mesh_.tets.children(ids[j])) c.store(kNoTet, std::memory_order_relaxed);
       }
       sync_.created(ids[j]);
     }
@@ -234,7 +238,11 @@ class TetReplacement {
         sync_.killed(o);
         continue;
       }
-      for (std::size_t j = 0; j < count; ++j) old.child[j].store(ids[j], std::memory_order_release);
+      if (dag_) {
+        auto& children = mesh_.tets.children(o);
+        for (std::size_t j = 0; j < count; ++j)
+          children[j].store(ids[j], std::memory_order_release);
+      }
       old.alive.store(false, std::memory_order_release);
       sync_.killed(o);
     }
@@ -264,7 +272,9 @@ class TetReplacement {
       const TetId id = slots_.allocate();
       Tet& tet = mesh_.tets[id];
       tet.vertex = q;
-      for (auto& c : tet.child) c.store(kNoTet, std::memory_order_relaxed);
+      if (dag_) {
+        for (auto& c : mesh_.tets.children(id)) c.store(kNoTet, std::memory_order_relaxed);
+      }
       sync_.created(id);  // locked by this thread before anyone can reach it
       scratch_created_.push_back(id);
     }
@@ -297,10 +307,10 @@ class TetReplacement {
         continue;
       }
       int slot = 0;
-      for (std::size_t j = 0; j < scratch_created_.size(); ++j) {
+      for (std::size_t j = 0; dag_ && j < scratch_created_.size(); ++j) {
         if (scratch_parent_[j] == -1 || scratch_parent_[j] == static_cast<int>(r)) {
-          old.child[static_cast<std::size_t>(slot++)].store(scratch_created_[j],
-                                                            std::memory_order_release);
+          mesh_.tets.children(scratch_old_[r])[static_cast<std::size_t>(slot++)].store(
+              scratch_created_[j], std::memory_order_release);
         }
       }
       old.alive.store(false, std::memory_order_release);
@@ -343,7 +353,8 @@ class TetReplacement {
   SharedMesh& mesh_;
   Sync& sync_;
   SlotAllocator& slots_;
-  bool recycle_;
+  bool recycle_;  // dead slots are retired for reuse (walk mode)
+  bool dag_;      // the old tetrahedra get the new ones as DAG children (the store keeps them)
   std::vector<TetId> scratch_old_;
   std::vector<Quad> scratch_new_;
   std::vector<int> scratch_parent_;  // index in scratch_old_ of the only DAG parent, or -1: all

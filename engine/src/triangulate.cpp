@@ -91,7 +91,7 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   stats.walk_fallbacks = dt.walk_fallbacks();
   if (options.repair == Repair::Splay)
     splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, stats.splay);
-  return dt.finite_tetrahedra(static_cast<VertexId>(input_count));
+  return dt.take_finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
 #define DTLAB_INSTANTIATE(K)                                                      \

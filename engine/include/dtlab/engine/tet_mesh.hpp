@@ -10,13 +10,17 @@
 // orient3d(v0, v1, v2, v3) > 0. Face f is the face opposite v[f]; kFaceVertex[f] lists its
 // vertices so that v[f] lies on the negative side (outward orientation). neighbor[f] = 4*t + g
 // names the tetrahedron t across face f and the index g of the same face inside t.
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace dtlab::engine {
 
@@ -43,12 +47,10 @@ inline int ref_face(FaceRef r) {
 struct Tet {
   std::array<VertexId, 4> vertex{};
   std::array<FaceRef, 4> neighbor{};
-  // DAG children: the tetrahedra that replaced this one (kNoTet when unused). Written before the
-  // tetrahedron is marked dead; published with release, read with acquire.
-  std::array<std::atomic<TetId>, 4> child{};
   // Owner of the lock (thread id + 1), 0 when free: used by the parallel lock methods.
   std::atomic<std::uint32_t> lock_owner{0};
-  // Dead tetrahedra are DAG history; release on death, acquire on reading.
+  // Dead tetrahedra are DAG history (or, in walk mode, free slots); release on death, acquire on
+  // reading. The DAG children live beside the records (TetStore::children).
   std::atomic<bool> alive{false};
 
   [[nodiscard]] bool is_infinite() const {
@@ -80,7 +82,7 @@ class TetStore {
   static constexpr std::size_t kMaxTets = kBlockSize * kMaxBlocks;
   static_assert(kMaxTets == (std::size_t{1} << 30) && 4 * (kMaxTets - 1) + 3 <= 0xFFFFFFFFu);
 
-  TetStore() : blocks_(new std::atomic<Tet*>[kMaxBlocks]) {
+  TetStore() : blocks_(new std::atomic<char*>[kMaxBlocks]) {
     for (std::size_t i = 0; i < kMaxBlocks; ++i)
       blocks_[i].store(nullptr, std::memory_order_relaxed);
   }
@@ -88,14 +90,27 @@ class TetStore {
   TetStore& operator=(const TetStore&) = delete;
   ~TetStore() {
     for (std::size_t i = 0; i < kMaxBlocks; ++i)
-      delete[] blocks_[i].load(std::memory_order_relaxed);
+      free_block(blocks_[i].load(std::memory_order_relaxed));
   }
 
-  Tet& operator[](TetId t) {
-    return blocks_[t >> kBlockBits].load(std::memory_order_acquire)[t & (kBlockSize - 1)];
+  // DAG children: the tetrahedra that replaced a dead one (kNoTet when unused). Written before
+  // the tetrahedron is marked dead; published with release, read with acquire. They follow
+  // their record in the same slot (one cache line for the descent to read), and exist only when
+  // the store keeps the DAG: a walk-mode slot is 40 bytes, a DAG-mode slot 56.
+  using Children = std::array<std::atomic<TetId>, 4>;
+  // Before the first allocation.
+  void keep_children(bool keep) {
+    children_ = keep;
+    stride_ = sizeof(Tet) + (keep ? sizeof(Children) : 0);
   }
+  [[nodiscard]] bool has_children() const { return children_; }
+  Children& children(TetId t) {
+    return *std::launder(reinterpret_cast<Children*>(slot(t) + sizeof(Tet)));
+  }
+
+  Tet& operator[](TetId t) { return *std::launder(reinterpret_cast<Tet*>(slot(t))); }
   const Tet& operator[](TetId t) const {
-    return blocks_[t >> kBlockBits].load(std::memory_order_acquire)[t & (kBlockSize - 1)];
+    return *std::launder(reinterpret_cast<const Tet*>(slot(t)));
   }
 
   // Reserves a fresh slot (single writer in the sequential engine; the parallel methods take
@@ -123,6 +138,17 @@ class TetStore {
     }
     return static_cast<TetId>(first);
   }
+  // Frees the block that holds slot t (the output step's last use of the store).
+  void release_block_of(TetId t) {
+    free_block(blocks_[t >> kBlockBits].exchange(nullptr, std::memory_order_acq_rel));
+  }
+  // Whether slot t's block is installed. An id below size() can lie in a block that the thread
+  // that took it has not installed yet: a scan over ids (not reached through a reference) asks
+  // this first.
+  [[nodiscard]] bool has_block(TetId t) const {
+    return (t >> kBlockBits) < kMaxBlocks &&
+           blocks_[t >> kBlockBits].load(std::memory_order_acquire) != nullptr;
+  }
   // Slots handed out (a refused allocate counted no slot).
   [[nodiscard]] std::size_t size() const {
     const std::size_t n = size_.load(std::memory_order_relaxed);
@@ -138,15 +164,43 @@ class TetStore {
  private:
   void ensure_block(std::size_t block) {
     if (blocks_[block].load(std::memory_order_acquire) != nullptr) return;
-    Tet* fresh = new Tet[kBlockSize];
-    Tet* expected = nullptr;
+    char* fresh = new_block();
+    char* expected = nullptr;
     if (!blocks_[block].compare_exchange_strong(expected, fresh, std::memory_order_acq_rel)) {
-      delete[] fresh;  // another thread installed it first
+      free_block(fresh);  // another thread installed it first
     }
   }
 
-  std::unique_ptr<std::atomic<Tet*>[]> blocks_;
+  // Blocks are mapped from the system directly (2.5 MiB, 3.5 with children), not from the heap: a
+  // released block goes back to the system at once, which is what lets take_finite_tetrahedra
+  // build the output in the memory the store gives up. (malloc would serve them from its heap
+  // once a larger block had been freed, and keep them there.)
+  [[nodiscard]] char* slot(TetId t) const {
+    return blocks_[t >> kBlockBits].load(std::memory_order_acquire) +
+           (t & (kBlockSize - 1)) * stride_;
+  }
+  [[nodiscard]] std::size_t block_bytes() const { return kBlockSize * stride_; }
+  char* new_block() const {
+    void* memory =
+        mmap(nullptr, block_bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (memory == MAP_FAILED) throw std::bad_alloc();
+    char* block = static_cast<char*>(memory);
+    for (std::size_t i = 0; i < kBlockSize; ++i) {
+      new (block + i * stride_) Tet();
+      if (children_) new (block + i * stride_ + sizeof(Tet)) Children{};
+    }
+    return block;
+  }
+  void free_block(char* block) const {
+    static_assert(std::is_trivially_destructible_v<Tet> &&
+                  std::is_trivially_destructible_v<Children>);
+    if (block != nullptr) munmap(block, block_bytes());
+  }
+
+  std::unique_ptr<std::atomic<char*>[]> blocks_;
   std::atomic<std::size_t> size_{0};
+  bool children_ = true;
+  std::size_t stride_ = sizeof(Tet) + sizeof(Children);  // bytes per slot
   std::size_t capacity_ = kMaxTets;
 };
 
