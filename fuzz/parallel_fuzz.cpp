@@ -12,7 +12,8 @@
 //   kernel:       0 adaptive, 1 filtered, 2 fast
 //   splay:        1: --repair (star splaying) for methods 0-3 and 6
 // The rest is a point set as for the triangulate harness (fuzz_input.hpp), at most 300 points.
-// The input's length picks the location mode: odd, the walk mode; even, the DAG.
+// The number of points picks the location mode: odd, the walk mode; even, the DAG. (Not the
+// input's length: every corpus input is 3 + 6k bytes long, odd.)
 //
 // Every kernel: an input that CGAL finds no tetrahedralization for (tests/cgal_reference.hpp, not
 // the engine's own code) must be refused with a TriangulationError, and any other input must not
@@ -72,9 +73,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.kernel = kKernels[kernel];
   options.stress = true;
   options.seed = size;
-  options.location = size % 2 == 1 ? dtlab::engine::Location::Walk : dtlab::engine::Location::Dag;
   // The default watchdog (10 s + 100 us per point) turns a hang into a TriangulationError.
   auto points = dtlab::fuzz::points_from_bytes(data + 1, size - 1, 300);
+  options.location =
+      points.size() % 2 == 1 ? dtlab::engine::Location::Walk : dtlab::engine::Location::Dag;
   if (options.kernel == KernelKind::Fast) {
     // Small integers keep the fast kernel's arithmetic exact; a twelfth of them (rounded, as a
     // grid with spacing 1/12 on [0, 1] is) is nearly degenerate and inexact, where it fails.
