@@ -66,8 +66,9 @@ class PointLocator {
   // real vertices and its last neighbours. The walk may end in a tetrahedron that died
   // meanwhile: then it walks again from a live one. insert() locks the result and checks it is
   // still alive; a live tetrahedron cannot have changed its vertices since the walk read them.
-  // Without slot reuse (no reclaimer) every dead tetrahedron keeps its DAG children too, and a
-  // walk that ends in a dead one descends the DAG below it, or from the roots when it failed.
+  // Without slot reuse on a store that keeps the DAG, a walk that ends in a dead tetrahedron
+  // descends the DAG below it, or from the roots when it failed. (The walk mode's stores keep no
+  // DAG; its only engine without a reclaimer, the post-check's, never locates.)
   TetId locate_by_walk(VertexId p, std::array<int, 4>& o) {
     TetId start = hint_ != kNoTet ? hint_ : walk_start_;
     hint_ = kNoTet;
