@@ -229,7 +229,6 @@ class IncrementalDelaunay {
   }
 
  public:
-  [[nodiscard]] std::uint64_t dag_nodes() const { return mesh_.tets.size(); }
   [[nodiscard]] std::uint64_t predicate_calls() const { return geometry_.predicate_calls(); }
   [[nodiscard]] std::uint64_t location_steps() const { return locator_.location_steps(); }
   [[nodiscard]] std::uint64_t walk_fallbacks() const { return locator_.walk_fallbacks(); }

@@ -1,10 +1,12 @@
 #pragma once
 // Flat, index-based tetrahedral mesh with the history DAG of the paper.
 //
-// Every tetrahedron ever created keeps its slot (no recycling): dead tetrahedra are the inner
-// nodes of the location DAG, and a reader descending the DAG never sees a slot reused under it,
-// which is what lets the parallel methods descend without locks. Storage is a chunked array with
-// a fixed directory, so a slot's address never changes while other threads append.
+// DAG mode: every tetrahedron ever created keeps its slot (no recycling): dead tetrahedra are the
+// inner nodes of the location DAG, and a reader descending the DAG never sees a slot reused under
+// it, which is what lets the parallel methods descend without locks. Walk mode: no DAG, and dead
+// slots are reused (slot_allocator.hpp; on a shared mesh after epoch-based reclamation,
+// slot_reclaimer.hpp). Storage is a chunked array with a fixed directory, so a slot's address
+// never changes while other threads append.
 //
 // Orientation convention: a live tetrahedron (v0, v1, v2, v3) is positively oriented,
 // orient3d(v0, v1, v2, v3) > 0. Face f is the face opposite v[f]; kFaceVertex[f] lists its
