@@ -5,11 +5,6 @@
 // INPUT is a generator spec (uniform:1000000) or a point file. With --threads T > 1 the parallel
 // methods in LIST (default optimistic-detect) run in walk mode at T threads, and CGAL's parallel
 // mode (TBB) at T threads when this build has it.
-#include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#ifdef DTLAB_HAS_CGAL_TBB
-#include <tbb/global_control.h>
-#endif
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,12 +20,12 @@
 #include <vector>
 
 #include "dtlab/engine/triangulate.hpp"
+#include "dtlab/experiments/cgal_engine.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/point_readers.hpp"
 
 namespace {
 
-using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 using dtlab::predicates::Point3;
 
 struct Sample {
@@ -96,34 +91,9 @@ Sample run_dtlab(const std::vector<Point3>& points, dtlab::engine::Location loca
   return {result.stats.seconds.total, static_cast<double>(result.tetrahedra.size()), 0};
 }
 
-template <class Tds>
-Sample run_cgal(const std::vector<Point3>& points, typename Tds::Concurrency_tag* /*tag*/,
-                int threads) {
-  using Dt = CGAL::Delaunay_triangulation_3<Epick, Tds>;
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<Epick::Point_3> cgal_points;
-  cgal_points.reserve(points.size());
-  for (const auto& p : points) cgal_points.emplace_back(p.x, p.y, p.z);
-  std::size_t cells = 0;
-  if constexpr (std::is_same_v<typename Tds::Concurrency_tag, CGAL::Sequential_tag>) {
-    (void)threads;
-    const Dt dt(cgal_points.begin(), cgal_points.end());
-    cells = dt.number_of_finite_cells();
-  } else {
-#ifdef DTLAB_HAS_CGAL_TBB
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                              static_cast<std::size_t>(threads));
-    // The lock grid over the points' box, as CGAL's documentation builds it.
-    CGAL::Bbox_3 box;
-    for (const auto& p : cgal_points) box += p.bbox();
-    typename Dt::Lock_data_structure locking(box, 50);
-    const Dt dt(cgal_points.begin(), cgal_points.end(), &locking);
-    cells = dt.number_of_finite_cells();
-#endif
-  }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return {seconds, static_cast<double>(cells), 0};
+Sample run_cgal(const std::vector<Point3>& points, int threads) {
+  const dtlab::experiments::CgalRun run = dtlab::experiments::run_cgal(points, threads);
+  return {run.seconds, static_cast<double>(run.finite_cells), 0};
 }
 
 }  // namespace
@@ -180,11 +150,7 @@ int main(int argc, char** argv) {
     add("dtlab DAG, sequential",
         [&](const auto& p) { return run_dtlab(p, Location::Dag, Method::Sequential, 1, seed); });
   }
-  add("CGAL, sequential", [](const auto& p) {
-    return run_cgal<CGAL::Triangulation_data_structure_3<
-        CGAL::Triangulation_vertex_base_3<Epick>, CGAL::Delaunay_triangulation_cell_base_3<Epick>,
-        CGAL::Sequential_tag>>(p, nullptr, 1);
-  });
+  add("CGAL, sequential", [](const auto& p) { return run_cgal(p, 1); });
   if (threads > 1) {
     std::stringstream list(methods);
     std::string name;
@@ -206,13 +172,10 @@ int main(int argc, char** argv) {
         return run_dtlab(p, Location::Walk, method, threads, seed);
       });
     }
-#ifdef DTLAB_HAS_CGAL_TBB
-    add("CGAL, parallel (TBB) " + std::to_string(threads) + "t", [&](const auto& p) {
-      return run_cgal<CGAL::Triangulation_data_structure_3<
-          CGAL::Triangulation_vertex_base_3<Epick>, CGAL::Delaunay_triangulation_cell_base_3<Epick>,
-          CGAL::Parallel_tag>>(p, nullptr, threads);
-    });
-#endif
+    if (dtlab::experiments::cgal_parallel_available()) {
+      add("CGAL, parallel (TBB) " + std::to_string(threads) + "t",
+          [&](const auto& p) { return run_cgal(p, threads); });
+    }
   }
 
   const double baseline = peak_rss_bytes();  // this process: the input alone

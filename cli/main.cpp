@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "dtlab/engine/triangulate.hpp"
+#include "dtlab/experiments/experiment.hpp"
 #include "dtlab/io/input_error.hpp"
 
 int main(int argc, char** argv) {
@@ -126,6 +127,38 @@ int main(int argc, char** argv) {
   repair_cmd->add_option("--stats", repair_stats, "write stats JSON to FILE, or - for stdout");
   repair_cmd->add_flag("--validate", repair_validate, "check the result with the exact validator");
 
+  std::string study;
+  dtlab::experiments::ExperimentOptions eopts;
+  bool list_studies = false;
+  bool no_plot = false;
+  auto* experiment = app.add_subcommand(
+      "experiment",
+      "run one study (dtlab experiment --list) and write DIR/NAME.csv, NAME.md, NAME.png and "
+      "machine.json");
+  experiment->add_option("NAME", study, "the study");
+  experiment->add_flag("--list", list_studies, "name every study and what it measures");
+  experiment->add_option("--out", eopts.out_dir, "output directory");
+  experiment->add_flag(
+      "--quick", eopts.quick,
+      "a reduced run (at most two minutes) that checks the files, not the numbers");
+  experiment->add_flag("--resume", eopts.resume,
+                       "keep DIR/NAME.csv's finished rows and run only the others");
+  experiment->add_option("--seeds", eopts.seeds, "seeds (rounds for the timing studies)")
+      ->check(CLI::Range(1, 1000));
+  experiment->add_option("--threads", eopts.threads, "thread counts, e.g. 1,2,4,8")->delimiter(',');
+  experiment->add_option("--sizes", eopts.sizes, "numbers of points, e.g. 10000,100000")
+      ->delimiter(',');
+  experiment
+      ->add_option("--inputs", eopts.inputs,
+                   "generator families and model names (files in the data directory)")
+      ->delimiter(',');
+  experiment->add_option("--location", eopts.locations, "dag, walk or both: dag,walk")
+      ->delimiter(',');
+  experiment->add_option("--data", eopts.data_dir,
+                         "the real models' directory (default $DTLAB_DATA_DIR or ../shared/data "
+                         "beside the source tree)");
+  experiment->add_flag("--no-plot", no_plot, "write no PNG (no python3 or matplotlib needed)");
+
   KernelKind audit_kernel = KernelKind::Adaptive;
   auto* audit =
       app.add_subcommand("predicates-audit", "predicate calls per stage while triangulating INPUT");
@@ -158,6 +191,23 @@ int main(int argc, char** argv) {
                                     repair_validate);
     }
     if (*audit) return dtlab::cli::run_predicates_audit(input, seed, audit_kernel);
+    if (*experiment) {
+      if (list_studies) {
+        for (const auto& s : dtlab::experiments::list_studies()) {
+          std::printf("%-18s %s\n", s.name.c_str(), s.summary.c_str());
+        }
+        return 0;
+      }
+      if (study.empty()) {
+        std::fprintf(stderr, "dtlab: error: name a study (dtlab experiment --list)\n");
+        return 2;
+      }
+      eopts.plot = !no_plot;
+      for (int i = 0; i < argc; ++i) {
+        eopts.command_line += (i == 0 ? std::string("dtlab") : " " + std::string(argv[i]));
+      }
+      return dtlab::experiments::run_experiment(study, eopts);
+    }
   } catch (const dtlab::io::InputError& e) {
     std::fprintf(stderr, "dtlab: error: %s\n", e.what());
     return 2;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# README command (a): set up, build Release, and run the main job on a generated default input.
+# README command (a): set up, build Release, and run the main job on a generated default input:
+# facts about the points, the mesh with three kernels, validated, and a comparison with CGAL.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -20,5 +21,14 @@ for kernel in fast adaptive filtered; do
   if [ "$code" -ne 0 ] && { [ "$kernel" != fast ] || [ "$code" -ne 1 ]; }; then status=1; fi
   echo
 done
-echo "machine: $(nproc) cores, $(uname -m), $(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -n1)"
+# The short comparison: dtlab (walk, DAG, optimistic-detect on 2 threads) against CGAL on the
+# same points, 2 interleaved rounds (dtlab experiment compare --quick; the table also goes to
+# build/main/compare.md, with the CSV, the plot and machine.json).
+if [[ "$input" =~ ^([a-z-]+):([0-9]+)$ ]]; then
+  compare_input=(--inputs "${BASH_REMATCH[1]}" --sizes "${BASH_REMATCH[2]}")
+else
+  compare_input=(--inputs "$(realpath "$input")")
+fi
+echo "== dtlab experiment compare --quick ${compare_input[*]} --out build/main"
+"$dtlab" experiment compare --quick "${compare_input[@]}" --out build/main 2>/dev/null || status=1
 exit "$status"

@@ -1,0 +1,38 @@
+#pragma once
+// `dtlab experiment NAME`: one study of the paper's questions, run in-process (each run in a forked
+// child, so that its peak memory is its own and a failed run cannot end the study), written as
+// DIR/NAME.csv (a row per run, appended as it finishes), DIR/NAME.md (the summary table),
+// DIR/NAME.png (the plot, by tools/plot_study.py) and DIR/machine.json.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dtlab::experiments {
+
+struct ExperimentOptions {
+  std::string out_dir;
+  bool quick = false;   // a reduced run (at most two minutes) that checks the files, not numbers
+  bool resume = false;  // keep DIR/NAME.csv's finished rows and run only the others
+  bool plot = true;     // write DIR/NAME.png (needs python3 and matplotlib)
+  int seeds = 0;        // 0: the study's default (rounds, for the timing studies)
+  std::vector<int> threads;            // empty: the study's default
+  std::vector<std::int64_t> sizes;     // empty: the study's default
+  std::vector<std::string> inputs;     // generator families or model names; empty: default
+  std::vector<std::string> locations;  // "dag", "walk"; empty: the study's default
+  std::string data_dir;                // the real models; empty: $DTLAB_DATA_DIR or ../shared/data
+  std::string tools_dir;     // plot_study.py; empty: $DTLAB_TOOLS_DIR or the source tree's tools/
+  std::string command_line;  // written above the summary table
+};
+
+struct StudyListing {
+  std::string name;
+  std::string summary;
+};
+
+std::vector<StudyListing> list_studies();
+
+// Runs study `name`; returns the exit code (0, or 2 with a message on stderr: unknown study,
+// unwritable directory, a failed plot). A run that fails is a row with status "error", not an exit.
+int run_experiment(const std::string& name, const ExperimentOptions& options);
+
+}  // namespace dtlab::experiments

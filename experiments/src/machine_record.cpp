@@ -1,0 +1,99 @@
+#include "machine_record.hpp"
+
+#include <sys/utsname.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+namespace dtlab::experiments {
+namespace {
+
+// The first line of /proc/cpuinfo (or /proc/meminfo) that starts with `key`, after its colon.
+std::string proc_field(const char* file, const std::string& key) {
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(key, 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon == std::string::npos) continue;
+      std::size_t start = line.find_first_not_of(" \t", colon + 1);
+      return start == std::string::npos ? std::string() : line.substr(start);
+    }
+  }
+  return "";
+}
+
+// Standard output of a shell command (its first line), or empty.
+std::string command_output(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return "";
+  std::array<char, 256> buffer{};
+  std::string out;
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) out += buffer.data();
+  pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  const std::size_t newline = out.find('\n');
+  return newline == std::string::npos ? out : out.substr(0, newline);
+}
+
+double memory_gib() {
+  const std::string kib = proc_field("/proc/meminfo", "MemTotal");
+  return kib.empty() ? 0.0 : std::stod(kib) / (1024.0 * 1024.0);
+}
+
+std::string commit(const std::string& source_dir) {
+  const std::string git = "git -C '" + source_dir + "' ";
+  std::string hash = command_output(git + "rev-parse HEAD 2>/dev/null");
+  if (hash.empty()) return "unknown";
+  if (!command_output(git + "status --porcelain --untracked-files=no 2>/dev/null").empty()) {
+    hash += "+uncommitted";
+  }
+  return hash;
+}
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+}  // namespace
+
+std::string machine_json(const std::string& source_dir, const std::string& command_line) {
+  nlohmann::ordered_json j;
+  j["cpu_model"] = proc_field("/proc/cpuinfo", "model name");
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["memory_gib"] = memory_gib();
+  utsname uts{};
+  if (uname(&uts) == 0) j["os"] = std::string(uts.sysname) + " " + uts.release + " " + uts.machine;
+  j["compiler"] = std::string(DTLAB_COMPILER_ID) + " " + __VERSION__;
+  j["build_type"] = DTLAB_BUILD_TYPE;
+  j["cxx_flags"] = DTLAB_CXX_FLAGS;
+  j["commit"] = commit(source_dir);
+  j["date_utc"] = utc_now();
+  j["command"] = command_line;
+  return j.dump(2);
+}
+
+std::string machine_line(const std::string& source_dir) {
+  const std::string full = commit(source_dir);
+  const std::size_t mark = full.find('+');
+  const std::string shown =
+      full.substr(0, 12) + (mark == std::string::npos ? std::string() : full.substr(mark));
+  char text[512];
+  std::snprintf(text, sizeof text, "%s, %u hardware threads, %.0f GiB, %s %s %s, commit %s",
+                proc_field("/proc/cpuinfo", "model name").c_str(),
+                std::thread::hardware_concurrency(), memory_gib(), DTLAB_COMPILER_ID, __VERSION__,
+                DTLAB_BUILD_TYPE, shown.c_str());
+  return text;
+}
+
+}  // namespace dtlab::experiments

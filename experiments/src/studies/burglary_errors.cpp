@@ -1,0 +1,109 @@
+// burglary-errors: what the burglary method leaves (non-Delaunay faces, reflex boundary edges,
+// potential problems, suspicious tetrahedra) before and after star splaying, beside the deadlocks
+// and give-ups of the optimistic methods on the same points, seeds and thread counts.
+#include "../summary.hpp"
+#include "studies.hpp"
+
+namespace dtlab::experiments {
+namespace {
+
+using engine::Method;
+
+std::vector<RunSpec> plan(const StudyParams& p) {
+  std::vector<RunSpec> runs;
+  for (const std::string& input : p.inputs) {
+    for_each_source(
+        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
+          for (int seed = 1; seed <= p.seeds; ++seed) {
+            for (const engine::Location location : p.locations) {
+              for (const int threads : p.threads) {
+                for (const Method method :
+                     {Method::Burglary, Method::OptimisticDetect, Method::OptimisticPrevent}) {
+                  RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
+                  spec.options.method = method;
+                  spec.options.threads = threads;
+                  spec.options.location = location;
+                  spec.variant = engine::to_string(method);
+                  if (method == Method::Burglary) {
+                    spec.options.repair = engine::Repair::Splay;
+                    spec.variant = "burglary+splay";
+                  }
+                  runs.push_back(spec);
+                }
+              }
+            }
+          }
+        });
+  }
+  return runs;
+}
+
+std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
+  MarkdownTable table(
+      {"input", "points", "location", "threads", "runs", "burglaries per 1k points",
+       "potential problems", "suspicious tetrahedra", "non-Delaunay faces (mean / median / max)",
+       "reflex boundary edges (mean / median / max)", "left after splaying (max)",
+       "stars splayed (median)", "repair s (median)", "repair / run",
+       "detect: deadlocks, give-ups (median)", "prevent: give-ups, priority raises (median)"});
+  const std::vector<std::string> keys = {"input", "size_asked", "location", "threads"};
+  const auto burglary = group_rows(
+      t, keys, [&](const Row& r) { return is_ok(t, r) && t.get(r, "method") == "burglary"; });
+  const auto others = [&](const std::vector<std::string>& key, const char* method) {
+    for (const RowGroup& g : group_rows(
+             t, keys, [&](const Row& r) { return is_ok(t, r) && t.get(r, "method") == method; })) {
+      if (g.key == key) return g.rows;
+    }
+    return std::vector<const Row*>{};
+  };
+  for (const RowGroup& g : burglary) {
+    const double points = aggregate_of(t, g.rows, "points").median;
+    const double repair = aggregate_of(t, g.rows, "post_check.seconds_repair").median;
+    const double run = aggregate_of(t, g.rows, "seconds.total").median;
+    const auto detect = others(g.key, "optimistic-detect");
+    const auto prevent = others(g.key, "optimistic-prevent");
+    table.add({g.key[0], thousands(points), g.key[2], threads_cell(t, g.rows),
+               std::to_string(g.rows.size()),
+               fixed(aggregate_of(t, g.rows, "burglaries").mean * 1000.0 / points, 2),
+               fixed(aggregate_of(t, g.rows, "potential_problems").mean, 1),
+               fixed(aggregate_of(t, g.rows, "suspicious_tetrahedra").mean, 1),
+               mean_median_max(aggregate_of(t, g.rows, "post_check.non_delaunay_faces")),
+               mean_median_max(aggregate_of(t, g.rows, "post_check.reflex_boundary_edges")),
+               fixed(aggregate_of(t, g.rows, "post_check.non_delaunay_after").max, 0),
+               fixed(aggregate_of(t, g.rows, "splay.stars").median, 0), fixed(repair, 3),
+               fixed(repair / (run - repair), 3),
+               detect.empty() ? "-"
+                              : fixed(aggregate_of(t, detect, "deadlocks").median, 0) + ", " +
+                                    fixed(aggregate_of(t, detect, "give_ups").median, 0),
+               prevent.empty() ? "-"
+                               : fixed(aggregate_of(t, prevent, "give_ups").median, 0) + ", " +
+                                     fixed(aggregate_of(t, prevent, "priority_raises").median, 0)});
+  }
+  return table.str() +
+         "\nNon-Delaunay faces and reflex boundary edges are the exact validator's counts right "
+         "after the parallel run (`post_check.*` in the CSV); \"left after splaying\" is the same "
+         "count (faces + reflex edges) on the mesh star splaying returned, which must be 0. "
+         "\"repair / run\" is the repair's seconds over the run's seconds without it. Thread "
+         "counts above the machine's hardware threads are marked oversubscribed.\n";
+}
+
+}  // namespace
+
+Study burglary_errors_study() {
+  return {"burglary-errors",
+          "non-Delaunay faces, reflex boundary edges, potential problems and suspicious "
+          "tetrahedra left by burglary, before and after star splaying, beside the optimistic "
+          "methods' deadlocks and give-ups",
+          {10,
+           2,
+           {2, 4, 8},
+           {2, 4},
+           {10000, 100000},
+           {2000},
+           {"uniform", "normal", "cluster", "grid", "sphere", "dragon_vrip_res3", "bunny_zipper"},
+           {"uniform", "grid", "sphere", "dragon_vrip_res4"},
+           {engine::Location::Dag}},
+          plan,
+          summarize};
+}
+
+}  // namespace dtlab::experiments

@@ -1,0 +1,105 @@
+// speedup: the paper's Table 1 and Figs. 10, 12, 13, 15: the speedup and efficiency of every lock
+// method over the sequential engine of the same location mode, per thread count, per round.
+#include <cmath>
+
+#include "../summary.hpp"
+#include "studies.hpp"
+
+namespace dtlab::experiments {
+namespace {
+
+using engine::Method;
+
+constexpr Method kParallelMethods[] = {Method::Pessimistic, Method::OptimisticDetect,
+                                       Method::OptimisticPrevent, Method::Burglary, Method::Batch};
+
+std::vector<RunSpec> plan(const StudyParams& p) {
+  std::vector<RunSpec> runs;
+  for (const std::string& input : p.inputs) {
+    for_each_source(
+        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
+          // A round is one seed: its points (for a generator) and its insertion order.
+          for (int round = 1; round <= p.seeds; ++round) {
+            for (const engine::Location location : p.locations) {
+              RunSpec sequential = dtlab_run(label, source, n, static_cast<std::uint64_t>(round));
+              sequential.options.location = location;
+              sequential.variant = "sequential";
+              runs.push_back(sequential);
+              for (const Method method : kParallelMethods) {
+                for (const int threads : p.threads) {
+                  RunSpec spec = sequential;
+                  spec.options.method = method;
+                  spec.options.threads = threads;
+                  spec.variant = engine::to_string(method);
+                  runs.push_back(spec);
+                }
+              }
+            }
+          }
+        });
+  }
+  return runs;
+}
+
+std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
+  MarkdownTable table({"input", "points", "location", "method", "threads", "sequential s",
+                       "method s", "speedup (median)", "efficiency", "speedup per round"});
+  const auto groups = group_rows(t, {"input", "size_asked", "location", "method", "threads"},
+                                 [&](const Row& r) { return is_ok(t, r); });
+  // The sequential time of each round (seed), per input, size and location.
+  const auto sequential_seconds = [&](const Row& r) {
+    for (const Row& s : t.rows) {
+      if (is_ok(t, s) && t.get(s, "method") == "sequential" &&
+          t.get(s, "input") == t.get(r, "input") &&
+          t.get(s, "size_asked") == t.get(r, "size_asked") &&
+          t.get(s, "location") == t.get(r, "location") && t.get(s, "seed") == t.get(r, "seed")) {
+        return t.number(s, "seconds.total");
+      }
+    }
+    return std::nan("");
+  };
+  for (const RowGroup& g : groups) {
+    if (g.key[3] == "sequential") continue;
+    std::vector<double> speedups;
+    std::vector<double> sequential;
+    std::string per_round;
+    for (const Row* r : g.rows) {
+      const double seq = sequential_seconds(*r);
+      sequential.push_back(seq);
+      speedups.push_back(seq / t.number(*r, "seconds.total"));
+      if (!per_round.empty()) per_round += ' ';
+      per_round += fixed(speedups.back(), 2);
+    }
+    const double speedup = aggregate(speedups).median;
+    const double threads = t.number(*g.rows.front(), "threads");
+    table.add({g.key[0], thousands(aggregate_of(t, g.rows, "points").median), g.key[2], g.key[3],
+               threads_cell(t, g.rows), fixed(aggregate(sequential).median, 3),
+               fixed(aggregate_of(t, g.rows, "seconds.total").median, 3), fixed(speedup, 2),
+               fixed(speedup / threads, 2), per_round});
+  }
+  return table.str() +
+         "\nSpeedup = the sequential engine's seconds (same location mode, same seed) over the "
+         "method's, per round; efficiency = speedup / threads. Each round is one seed: its "
+         "points and its insertion order. Burglary's times include no repair.\n";
+}
+
+}  // namespace
+
+Study speedup_study() {
+  return {"speedup",
+          "speedup and efficiency of every lock method over the sequential engine of the same "
+          "location mode, per thread count, per round (paper Table 1, Figs. 10, 12, 13, 15)",
+          {5,
+           2,
+           {1, 2, 4},
+           {1, 2},
+           {10000, 50000, 100000, 200000},
+           {3000},
+           {"uniform", "dragon_vrip_res2"},
+           {"uniform"},
+           {engine::Location::Dag, engine::Location::Walk}},
+          plan,
+          summarize};
+}
+
+}  // namespace dtlab::experiments

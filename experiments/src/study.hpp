@@ -1,0 +1,83 @@
+#pragma once
+// What a study is: a plan (the runs, from the parameters) and a summary (Markdown tables from the
+// finished rows). The driver (experiment.cpp) runs the plan, appends the rows and writes the files.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "csv_table.hpp"
+#include "dtlab/engine/triangulate.hpp"
+
+namespace dtlab::experiments {
+
+enum class Engine { Dtlab, CgalSequential, CgalParallel };
+const char* to_string(Engine e);
+
+// One run: an input, an engine and its options, and what to measure beside the stats.
+struct RunSpec {
+  std::string input;      // the label: a generator family or a model name
+  std::string source;     // a generator spec ("uniform:10000") or a file path
+  std::int64_t size = 0;  // points asked for; 0 for a model (taken whole)
+  std::string variant;    // the study's name for the configuration ("fast+repair", ...)
+  Engine engine = Engine::Dtlab;
+  engine::TriangulateOptions options;
+  bool validate = false;  // the exact validator (adaptive kernel) on the result
+  bool audit = false;     // count predicate calls per stage; fast: signs that differ from exact
+  int round = 0;          // repeated runs of the same configuration (timing studies)
+};
+
+// The parameters after the study's defaults have filled what the user left out.
+struct StudyParams {
+  bool quick = false;
+  int seeds = 1;
+  std::vector<int> threads;
+  std::vector<std::int64_t> sizes;
+  std::vector<std::string> inputs;
+  std::vector<engine::Location> locations;
+  std::string data_dir;
+  unsigned hardware_threads = 1;
+};
+
+// The defaults of a study, full and quick.
+struct StudyDefaults {
+  int seeds;
+  int quick_seeds;
+  std::vector<int> threads;
+  std::vector<int> quick_threads;
+  std::vector<std::int64_t> sizes;
+  std::vector<std::int64_t> quick_sizes;
+  std::vector<std::string> inputs;
+  std::vector<std::string> quick_inputs;
+  std::vector<engine::Location> locations;
+};
+
+struct Study {
+  const char* name;
+  const char* summary;
+  StudyDefaults defaults;
+  std::vector<RunSpec> (*plan)(const StudyParams& params);
+  // Markdown (headings, tables, short notes) from every row of the CSV.
+  std::string (*summarize)(const CsvTable& rows, const StudyParams& params);
+};
+
+const std::vector<Study>& all_studies();
+
+// The runs of `input` at every size (a model is taken whole, once): calls add(label, source, size).
+template <class Add>
+void for_each_source(const StudyParams& params, const std::string& input, Add add);
+
+// Resolves a model name (a file in the data directory, with or without its extension) or a path;
+// empty when it is neither.
+std::string model_path(const std::string& data_dir, const std::string& name);
+bool is_generator_family(const std::string& name);
+
+template <class Add>
+void for_each_source(const StudyParams& params, const std::string& input, Add add) {
+  if (is_generator_family(input)) {
+    for (const std::int64_t n : params.sizes) add(input, input + ":" + std::to_string(n), n);
+  } else {
+    add(input, model_path(params.data_dir, input), std::int64_t{0});
+  }
+}
+
+}  // namespace dtlab::experiments

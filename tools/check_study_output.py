@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""Checks the files of one `dtlab experiment NAME` run: their presence and their columns, not
+their numbers (CI runs every study with --quick and this check).
+
+Usage: tools/check_study_output.py DIR NAME
+Exits 1 with a message for the first thing missing.
+"""
+import csv
+import json
+import os
+import sys
+
+# Columns every study's CSV has: the run, its options, the engine's stats, the validator, the audit.
+COMMON = ["run_key", "study", "input", "source", "size_asked", "variant", "engine", "round",
+          "status", "error", "hardware_threads", "oversubscribed", "seconds_wall", "points",
+          "inserted", "duplicates", "tetrahedra", "seconds.total", "seconds.location",
+          "flips.S23", "flips.S44", "dag_nodes", "store_slots", "abandoned_insertions",
+          "peak_rss_bytes", "bytes_per_point", "waits", "deadlocks", "give_ups", "burglaries",
+          "potential_problems", "suspicious_tetrahedra", "post_check.non_delaunay_faces",
+          "post_check.non_delaunay_after", "splay.stars", "splay.seconds", "method", "threads",
+          "distribution", "predicates", "location", "bounding", "repair", "seed",
+          "validation.valid", "validation.non_delaunay_faces", "audit.calls",
+          "audit.wrong_sign", "audit.stage.A"]
+
+# Per study: columns that must hold a value in every finished row of the kind named.
+FILLED = {
+    "burglary-errors": ("method", "burglary", ["post_check.non_delaunay_faces",
+                                               "post_check.reflex_boundary_edges",
+                                               "post_check.non_delaunay_after", "splay.stars",
+                                               "potential_problems", "suspicious_tetrahedra"]),
+    "predicate-errors": ("variant", "fast", ["validation.valid", "validation.non_delaunay_faces",
+                                             "seconds.total"]),
+    "speedup": ("method", "optimistic-detect", ["seconds.total", "deadlocks", "give_ups"]),
+    "breakdown": ("method", "sequential", ["seconds.location", "seconds.subdivision",
+                                           "seconds.legalization", "seconds.other"]),
+    "flips": ("method", "sequential", ["flips.S23", "flips.S32", "flips.S22", "flips.S44",
+                                       "dag_nodes"]),
+    "deadlocks": ("method", "optimistic-detect", ["deadlocks", "stale_cycles", "give_ups"]),
+    "hull-loss": ("bounding", "aux-tet", ["hull_tetrahedra_lost",
+                                          "validation.reflex_boundary_edges"]),
+    "compare": ("engine", "cgal", ["seconds.total", "tetrahedra", "peak_rss_bytes"]),
+}
+MACHINE = ["cpu_model", "hardware_threads", "memory_gib", "compiler", "build_type", "cxx_flags",
+           "commit", "date_utc", "command"]
+
+
+def fail(message):
+    sys.exit("check_study_output: " + message)
+
+
+def main():
+    if len(sys.argv) != 3 or sys.argv[2] not in FILLED:
+        fail("usage: check_study_output.py DIR {%s}" % ",".join(FILLED))
+    directory, name = sys.argv[1:]
+    path = os.path.join(directory, name + ".csv")
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        rows = list(reader)
+    missing = [c for c in COMMON if c not in header]
+    if missing:
+        fail("%s lacks columns %s" % (path, missing))
+    if not rows:
+        fail(path + " has no run")
+    keys = set()
+    for i, row in enumerate(rows):
+        if len(row) != len(header):
+            fail("%s row %d has %d fields, the header %d" % (path, i + 1, len(row), len(header)))
+        r = dict(zip(header, row))
+        if r["study"] != name:
+            fail("%s row %d belongs to study %s" % (path, i + 1, r["study"]))
+        if r["status"] != "ok":
+            fail("%s: run %s ended %s: %s" % (path, r["run_key"], r["status"], r["error"]))
+        if r["run_key"] in keys:
+            fail("%s: run %s twice" % (path, r["run_key"]))
+        keys.add(r["run_key"])
+    column, value, filled = FILLED[name]
+    kind = [dict(zip(header, row)) for row in rows if dict(zip(header, row))[column] == value]
+    if not kind:
+        fail("%s has no run with %s = %s" % (path, column, value))
+    for r in kind:
+        empty = [c for c in filled if c not in r or r[c] == ""]
+        if empty:
+            fail("%s: run %s has no value in %s" % (path, r["run_key"], empty))
+
+    md = open(os.path.join(directory, name + ".md")).read()
+    if not md.startswith("## " + name + ":"):
+        fail(name + ".md does not start with its heading")
+    table_rows = [line for line in md.splitlines() if line.startswith("| ")]
+    if len(table_rows) < 2:
+        fail(name + ".md has no table with a row")
+    with open(os.path.join(directory, name + ".png"), "rb") as f:
+        png = f.read()
+    if not png.startswith(b"\x89PNG\r\n\x1a\n") or len(png) < 2000:
+        fail(name + ".png is not a plot")
+    machine = json.load(open(os.path.join(directory, "machine.json")))
+    absent = [k for k in MACHINE if k not in machine or machine[k] in ("", None)]
+    if absent:
+        fail("machine.json lacks " + ", ".join(absent))
+    print("check_study_output: %s: %d runs, %d columns, table, plot and machine record"
+          % (name, len(rows), len(header)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,224 @@
+#!/usr/bin/python3
+"""Plots one study of `dtlab experiment` from its CSV (the command calls this script).
+
+Usage: tools/plot_study.py NAME STUDY.csv OUT.png
+Each study has one figure; thread counts above the machine's hardware threads are drawn
+hollow and marked "oversubscribed".
+"""
+import csv
+import statistics
+import sys
+from collections import OrderedDict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def num(row, key):
+    try:
+        return float(row[key])
+    except (KeyError, ValueError):
+        return float("nan")
+
+
+def ok_rows(path):
+    with open(path, newline="") as f:
+        return [r for r in csv.DictReader(f) if r["status"] == "ok"]
+
+
+def grouped(rows, keys):
+    groups = OrderedDict()
+    for r in rows:
+        groups.setdefault(tuple(r[k] for k in keys), []).append(r)
+    return groups
+
+
+def median(rows, key):
+    values = [num(r, key) for r in rows]
+    values = [v for v in values if v == v]
+    return statistics.median(values) if values else float("nan")
+
+
+def mean(rows, key):
+    values = [num(r, key) for r in rows]
+    values = [v for v in values if v == v]
+    return statistics.mean(values) if values else float("nan")
+
+
+def label(input_name, size, points):
+    return "%s %d" % (input_name, points) if size == "0" else "%s:%s" % (input_name, size)
+
+
+def mark_oversubscribed(ax, rows):
+    cores = int(rows[0]["hardware_threads"]) if rows else 0
+    threads = sorted({int(r["threads"]) for r in rows})
+    ax.set_xticks(threads)
+    if cores and threads and threads[-1] > cores:
+        ax.axvspan(cores + 0.5, threads[-1] + 0.5, color="0.9", zorder=0)
+        ax.text(cores + 0.6, ax.get_ylim()[1] * 0.95, "oversubscribed (> %d hardware threads)"
+                % cores, fontsize=7, va="top")
+
+
+def burglary_errors(rows, ax):
+    rows = [r for r in rows if r["method"] == "burglary"]
+    for (inp, size, loc), g in grouped(rows, ["input", "size_asked", "location"]).items():
+        pts = median(g, "points")
+        by_t = grouped(g, ["threads"])
+        xs = sorted(int(t[0]) for t in by_t)
+        ys = [1000.0 * mean(by_t[(str(x),)], "post_check.non_delaunay_faces") / pts for x in xs]
+        ax.plot(xs, ys, marker="o", label=label(inp, size, pts) + " " + loc)
+    ax.set_xlabel("threads")
+    ax.set_ylabel("non-Delaunay faces per 1000 points (mean)")
+    ax.set_title("burglary: faces left non-Delaunay (0 after star splaying)")
+    mark_oversubscribed(ax, rows)
+
+
+def predicate_errors(rows, ax):
+    variants = ["adaptive", "filtered", "exact", "fast", "fast+repair"]
+    sources = list(grouped(rows, ["input", "size_asked"]).keys())
+    width = 0.8 / len(variants)
+    for k, v in enumerate(variants):
+        xs, ys, bad = [], [], []
+        for i, s in enumerate(sources):
+            g = [r for r in rows if (r["input"], r["size_asked"]) == s and r["variant"] == v]
+            if not g:
+                continue
+            xs.append(i + k * width)
+            ys.append(median(g, "seconds.total"))
+            bad.append(any(r["validation.valid"] != "true" for r in g))
+        bars = ax.bar(xs, ys, width, label=v)
+        for bar, b in zip(bars, bad):
+            if b:
+                bar.set_hatch("xx")
+    ax.set_xticks([i + 0.4 - width / 2 for i in range(len(sources))])
+    ax.set_xticklabels([s[0] for s in sources], rotation=30, ha="right", fontsize=8)
+    ax.set_ylabel("seconds (median)")
+    ax.set_yscale("log")
+    ax.set_title("kernels per family (hatched: some run invalid)")
+
+
+def speedup(rows, ax):
+    seq = {(r["input"], r["size_asked"], r["location"], r["seed"]): num(r, "seconds.total")
+           for r in rows if r["method"] == "sequential"}
+    sizes = sorted({int(r["size_asked"]) for r in rows})
+    size = str(sizes[-1])
+    inp = rows[0]["input"]
+    colors = {}
+    for (method, loc), g in grouped([r for r in rows if r["method"] != "sequential"
+                                     and r["size_asked"] == size and r["input"] == inp],
+                                    ["method", "location"]).items():
+        by_t = grouped(g, ["threads"])
+        xs = sorted(int(t[0]) for t in by_t)
+        ys = []
+        for x in xs:
+            values = [seq[(r["input"], r["size_asked"], r["location"], r["seed"])]
+                      / num(r, "seconds.total") for r in by_t[(str(x),)]
+                      if (r["input"], r["size_asked"], r["location"], r["seed"]) in seq]
+            ys.append(statistics.median(values) if values else float("nan"))
+        color = colors.setdefault(method, "C%d" % len(colors))
+        ax.plot(xs, ys, marker="o", linestyle="-" if loc == "walk" else "--", color=color,
+                label="%s (%s)" % (method, loc))
+    ax.axhline(1.0, color="0.5", linewidth=0.8)
+    ax.set_xlabel("threads")
+    ax.set_ylabel("speedup over the sequential engine (median)")
+    ax.set_title("speedup, %s:%s" % (inp, size))
+    mark_oversubscribed(ax, rows)
+
+
+def breakdown(rows, ax):
+    for loc, g in grouped(rows, ["location"]).items():
+        by_n = grouped(g, ["size_asked"])
+        ns = sorted(int(n[0]) for n in by_n)
+        for phase, style in [("location", "o"), ("subdivision", "s"), ("legalization", "^"),
+                             ("other", "x")]:
+            ys = [median(by_n[(str(n),)], "seconds." + phase) for n in ns]
+            ax.plot(ns, ys, marker=style, linestyle="-" if loc[0] == "walk" else "--",
+                    label="%s (%s)" % (phase, loc[0]))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("points")
+    ax.set_ylabel("seconds (median)")
+    ax.set_title("time per phase (paper Fig. 4)")
+
+
+def flips(rows, ax):
+    for (inp, loc), g in grouped(rows, ["input", "location"]).items():
+        by_n = grouped(g, ["size_asked"])
+        ns = sorted(int(n[0]) for n in by_n)
+        ys = [sum(mean(by_n[(str(n),)], "flips." + f) for f in ("S23", "S32", "S22", "S44"))
+              / median(by_n[(str(n),)], "points") for n in ns]
+        ax.plot(ns, ys, marker="o", label="%s (%s)" % (inp, loc))
+    ax.set_xscale("log")
+    ax.set_xlabel("points")
+    ax.set_ylabel("flips per point (mean)")
+    ax.set_title("flips per point (paper Figs. 8, 9; by type in the table)")
+
+
+def deadlocks(rows, ax):
+    for (method, size), g in grouped(rows, ["method", "size_asked"]).items():
+        by_t = grouped(g, ["threads"])
+        xs = sorted(int(t[0]) for t in by_t)
+        ys = [1000.0 * median(by_t[(str(x),)], "deadlocks") / median(by_t[(str(x),)], "points")
+              for x in xs]
+        ax.plot(xs, ys, marker="o", label="%s, %s points" % (method, size))
+    ax.set_xlabel("threads")
+    ax.set_ylabel("deadlocks per 1000 points (median)")
+    ax.set_title("deadlocks (paper Fig. 14)")
+    mark_oversubscribed(ax, rows)
+
+
+def hull_loss(rows, ax):
+    aux = [r for r in rows if r["bounding"] == "aux-tet"]
+    inf = {(r["input"], r["size_asked"], r["seed"]): num(r, "tetrahedra")
+           for r in rows if r["bounding"] == "infinite"}
+    for inp, g in grouped(aux, ["input"]).items():
+        by_n = grouped(g, ["size_asked"])
+        pts, ys = [], []
+        for n, rs in by_n.items():
+            pts.append(median(rs, "points"))
+            ys.append(100.0 * statistics.mean(
+                num(r, "hull_tetrahedra_lost") / inf[(r["input"], r["size_asked"], r["seed"])]
+                for r in rs if (r["input"], r["size_asked"], r["seed"]) in inf))
+        ax.plot(pts, ys, marker="o", label=inp[0])
+    ax.set_xscale("log")
+    ax.set_xlabel("points")
+    ax.set_ylabel("hull tetrahedra lost, % of the mesh (mean)")
+    ax.set_title("the auxiliary tetrahedron's lost tetrahedra")
+
+
+def compare(rows, ax):
+    sources = grouped(rows, ["input", "size_asked"])
+    for i, (source, g) in enumerate(sources.items()):
+        engines = grouped(g, ["variant", "threads"])
+        names = ["%s %st" % k for k in engines]
+        ys = [median(v, "seconds.total") for v in engines.values()]
+        ax.barh([n + ("" if len(sources) == 1 else " " + source[1]) for n in names], ys)
+    ax.set_xlabel("seconds (median)")
+    ax.set_title("dtlab and CGAL, same points")
+
+
+PLOTS = {"burglary-errors": burglary_errors, "predicate-errors": predicate_errors,
+         "speedup": speedup, "breakdown": breakdown, "flips": flips, "deadlocks": deadlocks,
+         "hull-loss": hull_loss, "compare": compare}
+
+
+def main():
+    if len(sys.argv) != 4 or sys.argv[1] not in PLOTS:
+        sys.exit("usage: plot_study.py {%s} STUDY.csv OUT.png" % ",".join(PLOTS))
+    name, csv_path, png = sys.argv[1:]
+    rows = ok_rows(csv_path)
+    if not rows:
+        sys.exit("plot_study.py: %s has no finished run to plot" % csv_path)
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    PLOTS[name](rows, ax)
+    handles, _ = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+if __name__ == "__main__":
+    main()
