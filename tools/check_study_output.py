@@ -20,7 +20,7 @@ COMMON = ["run_key", "study", "input", "source", "size_asked", "variant", "engin
           "post_check.non_delaunay_after", "splay.stars", "splay.seconds", "method", "threads",
           "distribution", "predicates", "location", "bounding", "repair", "seed",
           "validation.valid", "validation.non_delaunay_faces", "audit.calls",
-          "audit.wrong_sign", "audit.stage.A"]
+          "audit.wrong_sign", "audit.stage.A", "commit", "finished_utc"]
 
 # Per study: columns that must hold a value in every finished row of the kind named.
 FILLED = {

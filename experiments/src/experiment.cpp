@@ -168,6 +168,9 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
   };
   const std::size_t status_column = column_of("status");
   const std::size_t wall_column = column_of("seconds_wall");
+  const std::size_t commit_column = column_of("commit");
+  const std::size_t finished_column = column_of("finished_utc");
+  const std::string commit = git_commit(source_dir);
   const auto start = std::chrono::steady_clock::now();
   PointCache cache;
   std::size_t done = 0;
@@ -177,8 +180,9 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
     const std::string key = run_key(spec);
     if (finished.count(key) != 0) continue;
     const auto& points = cache.get(spec);
-    const std::vector<std::string> row =
-        execute_isolated(name, spec, points, params.hardware_threads);
+    std::vector<std::string> row = execute_isolated(name, spec, points, params.hardware_threads);
+    row[commit_column] = commit;
+    row[finished_column] = utc_now();
     csv.append(row);
     const std::string& status = row[status_column];
     if (status != "ok") ++failed;

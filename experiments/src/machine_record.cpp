@@ -46,7 +46,9 @@ double memory_gib() {
   return kib.empty() ? 0.0 : std::stod(kib) / (1024.0 * 1024.0);
 }
 
-std::string commit(const std::string& source_dir) {
+}  // namespace
+
+std::string git_commit(const std::string& source_dir) {
   const std::string git = "git -C '" + source_dir + "' ";
   std::string hash = command_output(git + "rev-parse HEAD 2>/dev/null");
   if (hash.empty()) return "unknown";
@@ -65,8 +67,6 @@ std::string utc_now() {
   return text;
 }
 
-}  // namespace
-
 std::string machine_json(const std::string& source_dir, const std::string& command_line) {
   nlohmann::ordered_json j;
   j["cpu_model"] = proc_field("/proc/cpuinfo", "model name");
@@ -77,14 +77,14 @@ std::string machine_json(const std::string& source_dir, const std::string& comma
   j["compiler"] = std::string(DTLAB_COMPILER_ID) + " " + __VERSION__;
   j["build_type"] = DTLAB_BUILD_TYPE;
   j["cxx_flags"] = DTLAB_CXX_FLAGS;
-  j["commit"] = commit(source_dir);
+  j["commit"] = git_commit(source_dir);
   j["date_utc"] = utc_now();
   j["command"] = command_line;
   return j.dump(2);
 }
 
 std::string machine_line(const std::string& source_dir) {
-  const std::string full = commit(source_dir);
+  const std::string full = git_commit(source_dir);
   const std::size_t mark = full.find('+');
   const std::string shown =
       full.substr(0, 12) + (mark == std::string::npos ? std::string() : full.substr(mark));

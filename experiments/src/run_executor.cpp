@@ -10,8 +10,8 @@
 #include <exception>
 #include <map>
 
-#include "dtlab/experiments/cgal_engine.hpp"
 #include "dtlab/engine/validator.hpp"
+#include "dtlab/experiments/cgal_engine.hpp"
 #include "dtlab/predicates/audit.hpp"
 #include "flat_json.hpp"
 
@@ -21,8 +21,9 @@ namespace {
 constexpr char kSeparator = '\x1f';  // between the values the child sends back
 
 const std::vector<std::string> kRunColumns = {
-    "run_key", "study",  "input", "source",           "size_asked",     "variant",     "engine",
-    "round",   "status", "error", "hardware_threads", "oversubscribed", "seconds_wall"};
+    "run_key",          "study",          "input",        "source", "size_asked",
+    "variant",          "engine",         "round",        "status", "error",
+    "hardware_threads", "oversubscribed", "seconds_wall", "commit", "finished_utc"};
 
 std::vector<std::string> audit_columns() {
   std::vector<std::string> columns = {"audit.calls", "audit.wrong_sign"};
