@@ -136,7 +136,7 @@ Study predicate_errors_study() {
            1,
            {1},
            {1},
-           {20000},
+           {10000},
            {500},
            {"uniform", "normal", "cluster", "grid", "sphere", "planes", "cospherical", "duplicates",
             "near-duplicates", "lattice", "tiny", "huge"},
