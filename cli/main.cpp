@@ -63,7 +63,9 @@ int main(int argc, char** argv) {
          "--method", targs.options.method,
          "sequential | pessimistic | optimistic-detect | optimistic-prevent | burglary | batch")
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case));
-  tri->add_option("--threads", targs.threads, "worker threads");
+  tri->add_option("--threads", targs.threads,
+                  "worker threads (batch: T - 1 locating threads and one inserting thread, at "
+                  "least one of each, so --threads 1 runs two)");
   tri->add_option("--distribution", targs.options.distribution,
                   "static | dynamic | strips | blocks")
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));

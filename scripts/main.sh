@@ -30,5 +30,11 @@ else
   compare_input=(--inputs "$(realpath "$input")")
 fi
 echo "== dtlab experiment compare --quick ${compare_input[*]} --out build/main"
-"$dtlab" experiment compare --quick "${compare_input[@]}" --out build/main 2>/dev/null || status=1
+mkdir -p build/main
+# Progress goes to build/main/compare.log; on failure it is shown.
+if ! "$dtlab" experiment compare --quick "${compare_input[@]}" --out build/main \
+  2>build/main/compare.log; then
+  cat build/main/compare.log
+  status=1
+fi
 exit "$status"

@@ -20,7 +20,9 @@ COMMON = ["run_key", "study", "input", "source", "size_asked", "variant", "engin
           "post_check.non_delaunay_after", "splay.stars", "splay.seconds", "method", "threads",
           "distribution", "predicates", "location", "bounding", "repair", "seed",
           "validation.valid", "validation.non_delaunay_faces", "audit.calls",
-          "audit.wrong_sign", "audit.stage.A", "commit", "finished_utc"]
+          "audit.wrong_sign", "audit.stage.A", "commit", "finished_utc",
+          "options.max_flips_per_insertion", "options.stress", "options.validate",
+          "options.audit"]
 
 # Per study: columns that must hold a value in every finished row of the kind named.
 FILLED = {
@@ -40,7 +42,7 @@ FILLED = {
                                           "validation.reflex_boundary_edges"]),
     "compare": ("engine", "cgal", ["seconds.total", "tetrahedra", "peak_rss_bytes"]),
 }
-MACHINE = ["cpu_model", "hardware_threads", "memory_gib", "compiler", "build_type", "cxx_flags",
+MACHINE = ["cpu_model", "hardware_threads", "cpus_available", "physical_cores", "memory_gib", "compiler", "build_type", "cxx_flags",
            "commit", "date_utc", "command"]
 
 

@@ -2,8 +2,8 @@
 """Plots one study of `dtlab experiment` from its CSV (the command calls this script).
 
 Usage: tools/plot_study.py NAME STUDY.csv OUT.png
-Each study has one figure; thread counts above the machine's hardware threads are drawn
-hollow and marked "oversubscribed".
+Each study has one figure; thread counts above the CPUs available to the run are shaded and
+marked "oversubscribed".
 """
 import csv
 import statistics
@@ -57,22 +57,35 @@ def mark_oversubscribed(ax, rows):
     ax.set_xticks(threads)
     if cores and threads and threads[-1] > cores:
         ax.axvspan(cores + 0.5, threads[-1] + 0.5, color="0.9", zorder=0)
-        ax.text(cores + 0.6, ax.get_ylim()[1] * 0.95, "oversubscribed (> %d hardware threads)"
-                % cores, fontsize=7, va="top")
+        low, high = ax.get_ylim()
+        ax.text(cores + 0.6, low + 0.02 * (high - low), "oversubscribed (> %d CPUs)" % cores,
+                fontsize=7, va="bottom")
 
 
 def burglary_errors(rows, ax):
+    fig = ax.figure
+    ax.remove()
+    left, right = fig.subplots(1, 2)
     rows = [r for r in rows if r["method"] == "burglary"]
     for (inp, size, loc), g in grouped(rows, ["input", "size_asked", "location"]).items():
         pts = median(g, "points")
         by_t = grouped(g, ["threads"])
         xs = sorted(int(t[0]) for t in by_t)
         ys = [1000.0 * mean(by_t[(str(x),)], "post_check.non_delaunay_faces") / pts for x in xs]
-        ax.plot(xs, ys, marker="o", label=label(inp, size, pts) + " " + loc)
-    ax.set_xlabel("threads")
-    ax.set_ylabel("non-Delaunay faces per 1000 points (mean)")
-    ax.set_title("burglary: faces left non-Delaunay (0 after star splaying)")
-    mark_oversubscribed(ax, rows)
+        name = label(inp, size, pts) + ("" if loc == "dag" else " " + loc)
+        line, = left.plot(xs, ys, marker="o", label=name)
+        right.plot([num(r, "splay.non_delaunay_faces") for r in g],
+                   [num(r, "splay.seconds") for r in g], "o", markersize=3,
+                   color=line.get_color(), label=name)
+    left.set_xlabel("threads")
+    left.set_ylabel("non-Delaunay faces per 1000 points (mean)")
+    left.set_title("left by burglary (0 after star splaying)", fontsize=9)
+    mark_oversubscribed(left, rows)
+    right.set_xscale("symlog")
+    right.set_yscale("log")
+    right.set_xlabel("non-Delaunay faces found")
+    right.set_ylabel("star splaying seconds")
+    right.set_title("the repair's cost, every run", fontsize=9)
 
 
 def predicate_errors(rows, ax):
@@ -100,31 +113,36 @@ def predicate_errors(rows, ax):
 
 
 def speedup(rows, ax):
+    fig = ax.figure
+    ax.remove()
     seq = {(r["input"], r["size_asked"], r["location"], r["seed"]): num(r, "seconds.total")
            for r in rows if r["method"] == "sequential"}
-    sizes = sorted({int(r["size_asked"]) for r in rows})
-    size = str(sizes[-1])
-    inp = rows[0]["input"]
-    colors = {}
-    for (method, loc), g in grouped([r for r in rows if r["method"] != "sequential"
-                                     and r["size_asked"] == size and r["input"] == inp],
-                                    ["method", "location"]).items():
-        by_t = grouped(g, ["threads"])
-        xs = sorted(int(t[0]) for t in by_t)
-        ys = []
-        for x in xs:
-            values = [seq[(r["input"], r["size_asked"], r["location"], r["seed"])]
-                      / num(r, "seconds.total") for r in by_t[(str(x),)]
-                      if (r["input"], r["size_asked"], r["location"], r["seed"]) in seq]
-            ys.append(statistics.median(values) if values else float("nan"))
-        color = colors.setdefault(method, "C%d" % len(colors))
-        ax.plot(xs, ys, marker="o", linestyle="-" if loc == "walk" else "--", color=color,
-                label="%s (%s)" % (method, loc))
-    ax.axhline(1.0, color="0.5", linewidth=0.8)
-    ax.set_xlabel("threads")
-    ax.set_ylabel("speedup over the sequential engine (median)")
-    ax.set_title("speedup, %s:%s" % (inp, size))
-    mark_oversubscribed(ax, rows)
+    inputs = list(grouped(rows, ["input"]).keys())
+    axes = fig.subplots(1, len(inputs), squeeze=False)[0]
+    for panel, (inp,) in zip(axes, inputs):
+        mine = [r for r in rows if r["input"] == inp]
+        size = str(max(int(r["size_asked"]) for r in mine))
+        colors = {}
+        for (method, loc), g in grouped([r for r in mine if r["method"] != "sequential"
+                                         and r["size_asked"] == size],
+                                        ["method", "location"]).items():
+            by_t = grouped(g, ["threads"])
+            xs = sorted(int(t[0]) for t in by_t)
+            ys = []
+            for x in xs:
+                values = [seq[k] / num(r, "seconds.total") for r in by_t[(str(x),)]
+                          for k in [(r["input"], r["size_asked"], r["location"], r["seed"])]
+                          if k in seq]
+                ys.append(statistics.median(values) if values else float("nan"))
+            color = colors.setdefault(method, "C%d" % len(colors))
+            panel.plot(xs, ys, marker="o", linestyle="-" if loc == "walk" else "--",
+                       color=color, label="%s (%s)" % (method, loc))
+        panel.axhline(1.0, color="0.5", linewidth=0.8)
+        panel.set_xlabel("threads")
+        panel.set_ylabel("speedup (median of the rounds)")
+        points = median(mine, "points") if size == "0" else int(size)
+        panel.set_title("%s, %d points" % (inp, points), fontsize=9)
+        mark_oversubscribed(panel, mine)
 
 
 def breakdown(rows, ax):
@@ -144,25 +162,39 @@ def breakdown(rows, ax):
 
 
 def flips(rows, ax):
+    fig = ax.figure
+    ax.remove()
+    left, right = fig.subplots(1, 2)
     for (inp, loc), g in grouped(rows, ["input", "location"]).items():
         by_n = grouped(g, ["size_asked"])
         ns = sorted(int(n[0]) for n in by_n)
-        ys = [sum(mean(by_n[(str(n),)], "flips." + f) for f in ("S23", "S32", "S22", "S44"))
-              / median(by_n[(str(n),)], "points") for n in ns]
-        ax.plot(ns, ys, marker="o", label="%s (%s)" % (inp, loc))
-    ax.set_xscale("log")
-    ax.set_xlabel("points")
-    ax.set_ylabel("flips per point (mean)")
-    ax.set_title("flips per point (paper Figs. 8, 9; by type in the table)")
+        for kind, style in (("S23", "-"), ("S32", "--"), ("S22", "-."), ("S44", ":")):
+            ys = [mean(by_n[(str(n),)], "flips." + kind) / median(by_n[(str(n),)], "points")
+                  for n in ns]
+            if any(y > 0 for y in ys):
+                left.plot(ns, ys, marker="o", linestyle=style, label="%s %s" % (inp, kind))
+        nodes = [num(r, "dag_nodes") for r in g]
+        seconds = [num(r, "seconds.total") for r in g]
+        right.plot(nodes, seconds, "o", label="%s (%s)" % (inp, loc))
+    left.set_xscale("log")
+    left.set_xlabel("points")
+    left.set_ylabel("flips per point (mean)")
+    left.set_title("flips by type (paper Figs. 8, 9)", fontsize=9)
+    right.set_xscale("log")
+    right.set_yscale("log")
+    right.set_xlabel("DAG nodes")
+    right.set_ylabel("seconds")
+    right.set_title("time against the DAG's size", fontsize=9)
 
 
 def deadlocks(rows, ax):
-    for (method, size), g in grouped(rows, ["method", "size_asked"]).items():
+    for (inp, loc, method, size), g in grouped(
+            rows, ["input", "location", "method", "size_asked"]).items():
         by_t = grouped(g, ["threads"])
         xs = sorted(int(t[0]) for t in by_t)
         ys = [1000.0 * median(by_t[(str(x),)], "deadlocks") / median(by_t[(str(x),)], "points")
               for x in xs]
-        ax.plot(xs, ys, marker="o", label="%s, %s points" % (method, size))
+        ax.plot(xs, ys, marker="o", label="%s:%s %s (%s)" % (inp, size, method, loc))
     ax.set_xlabel("threads")
     ax.set_ylabel("deadlocks per 1000 points (median)")
     ax.set_title("deadlocks (paper Fig. 14)")
@@ -170,18 +202,17 @@ def deadlocks(rows, ax):
 
 
 def hull_loss(rows, ax):
-    aux = [r for r in rows if r["bounding"] == "aux-tet"]
-    inf = {(r["input"], r["size_asked"], r["seed"]): num(r, "tetrahedra")
-           for r in rows if r["bounding"] == "infinite"}
-    for inp, g in grouped(aux, ["input"]).items():
-        by_n = grouped(g, ["size_asked"])
+    def key(r):
+        return (r["input"], r["size_asked"], r["location"], r["seed"])
+    inf = {key(r): num(r, "tetrahedra") for r in rows if r["bounding"] == "infinite"}
+    aux = [r for r in rows if r["bounding"] == "aux-tet" and key(r) in inf]
+    for (inp, loc), g in grouped(aux, ["input", "location"]).items():
         pts, ys = [], []
-        for n, rs in by_n.items():
+        for rs in grouped(g, ["size_asked"]).values():
             pts.append(median(rs, "points"))
-            ys.append(100.0 * statistics.mean(
-                num(r, "hull_tetrahedra_lost") / inf[(r["input"], r["size_asked"], r["seed"])]
-                for r in rs if (r["input"], r["size_asked"], r["seed"]) in inf))
-        ax.plot(pts, ys, marker="o", label=inp[0])
+            ys.append(100.0 * statistics.mean(num(r, "hull_tetrahedra_lost") / inf[key(r)]
+                                              for r in rs))
+        ax.plot(pts, ys, marker="o", label=inp if loc == "dag" else "%s (%s)" % (inp, loc))
     ax.set_xscale("log")
     ax.set_xlabel("points")
     ax.set_ylabel("hull tetrahedra lost, % of the mesh (mean)")
@@ -211,11 +242,12 @@ def main():
     rows = ok_rows(csv_path)
     if not rows:
         sys.exit("plot_study.py: %s has no finished run to plot" % csv_path)
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    fig, ax = plt.subplots(figsize=(9, 4.5))
     PLOTS[name](rows, ax)
-    handles, _ = ax.get_legend_handles_labels()
-    if handles:
-        ax.legend(fontsize=7)
+    for axis in fig.axes:
+        handles, _ = axis.get_legend_handles_labels()
+        if handles:
+            axis.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 
 namespace dtlab::experiments {
@@ -84,6 +85,8 @@ CsvTable read_csv(const std::string& path, std::size_t* dropped) {
   return table;
 }
 
+namespace {
+
 std::string csv_line(const std::vector<std::string>& fields) {
   std::string line;
   for (std::size_t i = 0; i < fields.size(); ++i) {
@@ -104,13 +107,21 @@ std::string csv_line(const std::vector<std::string>& fields) {
   return line;
 }
 
+}  // namespace
+
 CsvAppender::CsvAppender(const std::string& path, const std::vector<std::string>& header,
-                         const std::vector<std::vector<std::string>>& keep)
-    : out_(path, std::ios::trunc) {
-  if (!out_) throw std::runtime_error(path + ": cannot open for writing");
-  out_ << csv_line(header);
-  for (const auto& row : keep) out_ << csv_line(row);
-  out_.flush();
+                         const std::vector<std::vector<std::string>>& keep) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::trunc);
+    out << csv_line(header);
+    for (const auto& row : keep) out << csv_line(row);
+    out.flush();
+    if (!out) throw std::runtime_error(temporary + ": cannot write");
+  }
+  std::filesystem::rename(temporary, path);
+  out_.open(path, std::ios::app);
+  if (!out_) throw std::runtime_error(path + ": cannot open for appending");
 }
 
 void CsvAppender::append(const std::vector<std::string>& row) {

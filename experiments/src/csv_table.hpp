@@ -28,15 +28,15 @@ CsvTable read_csv(const std::string& path, std::size_t* dropped = nullptr);
 
 class CsvAppender {
  public:
-  // Starts `path` anew with `header`, or, with `keep` (resume), rewrites it with those rows.
+  // Writes `header` and the rows of `keep` (resume) to a temporary file that then replaces `path`
+  // (an interrupt meanwhile leaves the old file whole), and opens it for appending.
   CsvAppender(const std::string& path, const std::vector<std::string>& header,
               const std::vector<std::vector<std::string>>& keep);
+  // Appends and flushes one row.
   void append(const std::vector<std::string>& row);
 
  private:
   std::ofstream out_;
 };
-
-std::string csv_line(const std::vector<std::string>& fields);
 
 }  // namespace dtlab::experiments

@@ -1,21 +1,29 @@
 #include "dtlab/experiments/experiment.hpp"
 
+#include <sched.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <stdexcept>
-#include <thread>
 
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/point_readers.hpp"
 #include "machine_record.hpp"
+#include "run_columns.hpp"
 #include "run_executor.hpp"
 #include "study.hpp"
 #include "summary.hpp"
+
+extern char** environ;
 
 namespace dtlab::experiments {
 namespace {
@@ -38,6 +46,10 @@ StudyParams resolve(const Study& study, const ExperimentOptions& options) {
   StudyParams p;
   p.quick = options.quick;
   p.seeds = options.seeds > 0 ? options.seeds : (options.quick ? d.quick_seeds : d.seeds);
+  if (!options.threads.empty() && d.threads.empty()) {
+    throw std::invalid_argument(std::string("study ") + study.name +
+                                " runs the sequential engine only: it takes no --threads");
+  }
   p.threads =
       !options.threads.empty() ? options.threads : (options.quick ? d.quick_threads : d.threads);
   p.sizes = !options.sizes.empty() ? options.sizes : (options.quick ? d.quick_sizes : d.sizes);
@@ -48,7 +60,7 @@ StudyParams resolve(const Study& study, const ExperimentOptions& options) {
       !options.data_dir.empty()
           ? options.data_dir
           : from_env_or("DTLAB_DATA_DIR", std::string(DTLAB_SOURCE_DIR) + "/../shared/data");
-  p.hardware_threads = std::max(1U, std::thread::hardware_concurrency());
+  p.hardware_threads = available_cpus();
   for (const int t : p.threads) {
     if (t < 1 || t > 1024) throw std::invalid_argument("--threads: each count in [1, 1024]");
   }
@@ -88,18 +100,91 @@ class PointCache {
   std::vector<predicates::Point3> points_;
 };
 
+// Runs tools/plot_study.py through its #! line (Debian's python3, where python3-matplotlib
+// lives, not a python3 that PATH may name first), without a shell.
 bool plot(const std::string& tools_dir, const std::string& name, const fs::path& dir) {
   const std::string script = tools_dir + "/plot_study.py";
   if (!fs::is_regular_file(script)) {
-    std::fprintf(stderr, "dtlab: error: %s not found (--tools DIR)\n", script.c_str());
+    std::fprintf(stderr, "dtlab: error: %s not found ($DTLAB_TOOLS_DIR)\n", script.c_str());
     return false;
   }
-  // Through its #! line (Debian's python3, where python3-matplotlib lives), not a python3 that
-  // PATH may name first.
-  const std::string command = "'" + script + "' " + name + " '" + (dir / (name + ".csv")).string() +
-                              "' '" + (dir / (name + ".png")).string() + "'";
+  const std::string csv = (dir / (name + ".csv")).string();
+  const std::string png = (dir / (name + ".png")).string();
+  std::vector<char*> argv = {const_cast<char*>(script.c_str()), const_cast<char*>(name.c_str()),
+                             const_cast<char*>(csv.c_str()), const_cast<char*>(png.c_str()),
+                             nullptr};
   std::fflush(nullptr);
-  return std::system(command.c_str()) == 0;
+  pid_t pid = 0;
+  if (posix_spawn(&pid, script.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+    return false;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+// The rows a resumed study keeps: finished (status ok) runs of this plan. Rows of an older
+// version's CSV are mapped when their columns are a subset of today's (new cells stay empty).
+struct Resumed {
+  std::vector<std::vector<std::string>> kept;
+  std::set<std::string> finished;
+};
+
+Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& planned) {
+  Resumed r;
+  if (!fs::exists(csv_path) || fs::file_size(csv_path) == 0) return r;
+  std::size_t cut = 0;
+  const CsvTable old = read_csv(csv_path.string(), &cut);
+  std::vector<std::size_t> to_new;
+  for (const std::string& column : old.header) {
+    try {
+      to_new.push_back(run_column(column));
+    } catch (const std::out_of_range&) {
+      throw std::runtime_error(csv_path.string() + " has a column " + column +
+                               " this version does not write: run without --resume");
+    }
+  }
+  std::vector<std::vector<std::string>> other_plan;
+  std::size_t failed = 0;
+  for (const auto& row : old.rows) {
+    std::vector<std::string> mapped(run_columns().size());
+    for (std::size_t i = 0; i < row.size(); ++i) mapped[to_new[i]] = row[i];
+    const std::string& key = mapped[run_column("run_key")];
+    if (mapped[run_column("status")] != "ok") {
+      ++failed;
+    } else if (planned.count(key) == 0) {
+      other_plan.push_back(std::move(mapped));
+    } else if (r.finished.insert(key).second) {
+      r.kept.push_back(std::move(mapped));
+    }
+  }
+  std::fprintf(stderr, "dtlab: resuming %s: %zu finished rows kept", csv_path.c_str(),
+               r.kept.size());
+  if (cut > 0) std::fprintf(stderr, ", %zu cut lines dropped", cut);
+  if (failed > 0) std::fprintf(stderr, ", %zu failed runs to run again", failed);
+  if (old.header.size() != run_columns().size()) {
+    std::fprintf(stderr, ", %zu columns new in this version left empty in them",
+                 run_columns().size() - old.header.size());
+  }
+  std::fprintf(stderr, "\n");
+  if (!other_plan.empty()) {
+    fs::path aside = csv_path;
+    aside.replace_extension(".other-runs.csv");
+    CsvAppender keep_aside(aside.string(), run_columns(), other_plan);
+    std::fprintf(stderr, "dtlab: %zu rows of other parameters moved to %s\n", other_plan.size(),
+                 aside.c_str());
+  }
+  return r;
+}
+
+// "Runs measured at commit X" (or "at commits X, Y") from the rows' commit column.
+std::string row_commits(const CsvTable& table) {
+  std::set<std::string> commits;
+  for (const auto& row : table.rows) commits.insert(short_commit(table.get(row, "commit")));
+  std::string out;
+  for (const std::string& c : commits) out += (out.empty() ? "" : ", ") + c;
+  return commits.size() == 1 ? "commit " + out : "commits " + out;
 }
 
 }  // namespace
@@ -138,38 +223,22 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
   const std::string source_dir = from_env_or("DTLAB_SOURCE_DIR", DTLAB_SOURCE_DIR);
   {
     std::ofstream machine(dir / "machine.json");
-    if (!machine) throw std::runtime_error((dir / "machine.json").string() + ": cannot write");
     machine << machine_json(source_dir, options.command_line) << "\n";
+    if (!machine) throw std::runtime_error((dir / "machine.json").string() + ": cannot write");
   }
 
   const fs::path csv_path = dir / (name + ".csv");
-  std::vector<std::vector<std::string>> kept;
   std::set<std::string> finished;
-  if (options.resume && fs::exists(csv_path)) {
-    std::size_t dropped = 0;
-    CsvTable old = read_csv(csv_path.string(), &dropped);
-    if (old.header != run_columns()) {
-      throw std::runtime_error(csv_path.string() +
-                               " has other columns (another dtlab version): run without --resume");
-    }
-    for (auto& row : old.rows) {
-      finished.insert(row[old.column("run_key")]);
-      kept.push_back(std::move(row));
-    }
-    std::fprintf(stderr, "dtlab: resuming %s: %zu finished rows kept%s\n", csv_path.c_str(),
-                 kept.size(), dropped > 0 ? ", a cut last line dropped" : "");
-  }
-  CsvAppender csv(csv_path.string(), run_columns(), kept);
+  std::unique_ptr<CsvAppender> csv;
+  {
+    Resumed resumed;
+    if (options.resume) resumed = resume_rows(csv_path, planned);
+    finished = std::move(resumed.finished);
+    csv = std::make_unique<CsvAppender>(csv_path.string(), run_columns(), resumed.kept);
+  }  // the kept rows are freed before any run: the children's memory does not hold them
 
-  const auto column_of = [](const char* column) {
-    const auto& columns = run_columns();
-    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) -
-                                    columns.begin());
-  };
-  const std::size_t status_column = column_of("status");
-  const std::size_t wall_column = column_of("seconds_wall");
-  const std::size_t commit_column = column_of("commit");
-  const std::size_t finished_column = column_of("finished_utc");
+  const std::size_t status_column = run_column("status");
+  const std::size_t wall_column = run_column("seconds_wall");
   const std::string commit = git_commit(source_dir);
   const auto start = std::chrono::steady_clock::now();
   PointCache cache;
@@ -179,11 +248,11 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
     ++done;
     const std::string key = run_key(spec);
     if (finished.count(key) != 0) continue;
-    const auto& points = cache.get(spec);
-    std::vector<std::string> row = execute_isolated(name, spec, points, params.hardware_threads);
-    row[commit_column] = commit;
-    row[finished_column] = utc_now();
-    csv.append(row);
+    std::vector<std::string> row =
+        execute_isolated(name, spec, cache.get(spec), params.hardware_threads);
+    row[run_column("commit")] = commit;
+    row[run_column("finished_utc")] = utc_now();
+    csv->append(row);
     const std::string& status = row[status_column];
     if (status != "ok") ++failed;
     const double elapsed =
@@ -191,19 +260,20 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
     std::fprintf(stderr, "[%zu/%zu %.0f s] %s: %s %s s\n", done, plan.size(), elapsed, key.c_str(),
                  status.c_str(), row[wall_column].c_str());
   }
+  csv.reset();
 
   const CsvTable table = read_csv(csv_path.string());
   std::string md = "## " + name + ": " + study->summary + "\n\n";
   md += "`" + options.command_line + "`  \n";
-  md += "Machine: " + machine_line(source_dir) +
+  md += "Machine: " + machine_line() + ". Runs measured at " + row_commits(table) +
         ". Seeds (rounds): " + std::to_string(params.seeds) + ". " +
         std::to_string(table.rows.size()) + " runs.\n\n";
-  md += study->summarize(table, params);
+  md += study->summarize(table);
   md += failed_runs(table);
   {
     std::ofstream out(dir / (name + ".md"));
-    if (!out) throw std::runtime_error((dir / (name + ".md")).string() + ": cannot write");
     out << md;
+    if (!out) throw std::runtime_error((dir / (name + ".md")).string() + ": cannot write");
   }
   std::printf("%s", md.c_str());
   std::fflush(stdout);
@@ -217,8 +287,8 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
             : from_env_or("DTLAB_TOOLS_DIR", std::string(DTLAB_SOURCE_DIR) + "/tools");
     if (!plot(tools, name, dir)) {
       std::fprintf(stderr,
-                   "dtlab: error: the plot failed (python3 with matplotlib: "
-                   "scripts/setup.sh); the CSV and the table are written\n");
+                   "dtlab: error: the plot failed (python3 with matplotlib: scripts/setup.sh); "
+                   "the CSV and the table are written\n");
       return 2;
     }
   }

@@ -2,13 +2,18 @@
 
 #include <sys/utsname.h>
 
+#include <sched.h>
+
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
+#include <utility>
 
 namespace dtlab::experiments {
 namespace {
@@ -41,6 +46,22 @@ std::string command_output(const std::string& command) {
   return newline == std::string::npos ? out : out.substr(0, newline);
 }
 
+// Distinct (physical id, core id) pairs of /proc/cpuinfo; the logical CPUs when it has none.
+unsigned physical_cores() {
+  std::ifstream in("/proc/cpuinfo");
+  std::set<std::pair<std::string, std::string>> cores;
+  std::string line;
+  std::string package;
+  while (std::getline(in, line)) {
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string value = colon + 2 <= line.size() ? line.substr(colon + 2) : "";
+    if (line.rfind("physical id", 0) == 0) package = value;
+    if (line.rfind("core id", 0) == 0) cores.emplace(package, value);
+  }
+  return cores.empty() ? std::thread::hardware_concurrency() : static_cast<unsigned>(cores.size());
+}
+
 double memory_gib() {
   const std::string kib = proc_field("/proc/meminfo", "MemTotal");
   return kib.empty() ? 0.0 : std::stod(kib) / (1024.0 * 1024.0);
@@ -49,6 +70,7 @@ double memory_gib() {
 }  // namespace
 
 std::string git_commit(const std::string& source_dir) {
+  if (source_dir.find('\'') != std::string::npos) return "unknown";  // no quoting games
   const std::string git = "git -C '" + source_dir + "' ";
   std::string hash = command_output(git + "rev-parse HEAD 2>/dev/null");
   if (hash.empty()) return "unknown";
@@ -70,29 +92,43 @@ std::string utc_now() {
 std::string machine_json(const std::string& source_dir, const std::string& command_line) {
   nlohmann::ordered_json j;
   j["cpu_model"] = proc_field("/proc/cpuinfo", "model name");
-  j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["hardware_threads"] = std::thread::hardware_concurrency();  // logical CPUs online
+  j["cpus_available"] = available_cpus();  // this process's affinity: the oversubscription line
+  j["physical_cores"] = physical_cores();
   j["memory_gib"] = memory_gib();
   utsname uts{};
   if (uname(&uts) == 0) j["os"] = std::string(uts.sysname) + " " + uts.release + " " + uts.machine;
   j["compiler"] = std::string(DTLAB_COMPILER_ID) + " " + __VERSION__;
   j["build_type"] = DTLAB_BUILD_TYPE;
   j["cxx_flags"] = DTLAB_CXX_FLAGS;
+  j["predicates_flags"] = DTLAB_PREDICATES_FLAGS;  // and -ffp-contract=off wherever they are used
+  j["cgal_flags"] = DTLAB_CGAL_FLAGS;
   j["commit"] = git_commit(source_dir);
   j["date_utc"] = utc_now();
   j["command"] = command_line;
   return j.dump(2);
 }
 
-std::string machine_line(const std::string& source_dir) {
-  const std::string full = git_commit(source_dir);
-  const std::size_t mark = full.find('+');
-  const std::string shown =
-      full.substr(0, 12) + (mark == std::string::npos ? std::string() : full.substr(mark));
+std::string short_commit(const std::string& commit) {
+  const std::size_t mark = commit.find('+');
+  return commit.substr(0, std::min<std::size_t>(12, mark)) +
+         (mark == std::string::npos ? std::string() : commit.substr(mark));
+}
+
+unsigned available_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    return std::max(1, CPU_COUNT(&set));
+  }
+  return std::max(1U, std::thread::hardware_concurrency());
+}
+
+std::string machine_line() {
   char text[512];
-  std::snprintf(text, sizeof text, "%s, %u hardware threads, %.0f GiB, %s %s %s, commit %s",
-                proc_field("/proc/cpuinfo", "model name").c_str(),
-                std::thread::hardware_concurrency(), memory_gib(), DTLAB_COMPILER_ID, __VERSION__,
-                DTLAB_BUILD_TYPE, shown.c_str());
+  std::snprintf(text, sizeof text, "%s, %u CPUs available (%u cores), %.0f GiB, %s %s, %s",
+                proc_field("/proc/cpuinfo", "model name").c_str(), available_cpus(),
+                physical_cores(), memory_gib(), DTLAB_COMPILER_ID, __VERSION__, DTLAB_BUILD_TYPE);
   return text;
 }
 

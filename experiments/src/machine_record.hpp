@@ -13,7 +13,14 @@ std::string git_commit(const std::string& source_dir);
 // The time now, as 2026-11-22T20:15:00Z.
 std::string utc_now();
 
-// One line for the top of a summary: "CPU, N hardware threads, M GiB, commit abc1234".
-std::string machine_line(const std::string& source_dir);
+// The first 12 digits of a commit, with its "+uncommitted" mark.
+std::string short_commit(const std::string& commit);
+
+// The CPUs this process may run on (its affinity mask, which taskset and cgroups narrow): the
+// count above which a thread count is oversubscribed.
+unsigned available_cpus();
+
+// One line for the top of a summary: "CPU, N CPUs available (C cores), M GiB, compiler, build".
+std::string machine_line();
 
 }  // namespace dtlab::experiments

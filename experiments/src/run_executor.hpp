@@ -1,7 +1,8 @@
 #pragma once
-// Runs one RunSpec in a forked child and returns its row: every option and every stat of the run
-// (the engine's stats JSON, flattened), the validator's verdict and the predicate audit, in the
-// fixed columns of run_columns(). The child has its own peak memory, audit counters and crashes.
+// Runs one RunSpec in a forked child and returns its row, in the columns of run_columns(): the
+// child measures (child_run.hpp) and sends its cells through a pipe; the parent adds the run's
+// own columns. The child has its own audit counters and peak memory (its RSS starts with the
+// parent's pages: the points), and a crash or a throw in it is a row, not the end of the study.
 #include <string>
 #include <vector>
 
@@ -9,12 +10,6 @@
 #include "study.hpp"
 
 namespace dtlab::experiments {
-
-// Every study's CSV has these columns, in this order.
-const std::vector<std::string>& run_columns();
-
-// Identifies a run within its study (the resume key).
-std::string run_key(const RunSpec& spec);
 
 std::vector<std::string> execute_isolated(const std::string& study, const RunSpec& spec,
                                           const std::vector<predicates::Point3>& points,

@@ -1,3 +1,4 @@
+// The study types' small helpers: names, inputs.
 #include <algorithm>
 #include <filesystem>
 
@@ -5,6 +6,28 @@
 #include "study.hpp"
 
 namespace dtlab::experiments {
+
+const char* to_string(Engine e) {
+  switch (e) {
+    case Engine::Dtlab:
+      return "dtlab";
+    case Engine::CgalSequential:
+      return "cgal";
+    case Engine::CgalParallel:
+      return "cgal-parallel";
+  }
+  return "?";
+}
+
+RunSpec dtlab_run(const std::string& input, const std::string& source, std::int64_t size,
+                  std::uint64_t seed) {
+  RunSpec spec;
+  spec.input = input;
+  spec.source = source;
+  spec.size = size;
+  spec.options.seed = seed;
+  return spec;
+}
 
 bool is_generator_family(const std::string& name) {
   const auto& families = generators::families();

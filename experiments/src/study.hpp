@@ -38,7 +38,7 @@ struct StudyParams {
   unsigned hardware_threads = 1;
 };
 
-// The defaults of a study, full and quick.
+// The defaults of a study, full and quick. A study with no thread counts takes no --threads.
 struct StudyDefaults {
   int seeds;
   int quick_seeds;
@@ -57,20 +57,21 @@ struct Study {
   StudyDefaults defaults;
   std::vector<RunSpec> (*plan)(const StudyParams& params);
   // Markdown (headings, tables, short notes) from every row of the CSV.
-  std::string (*summarize)(const CsvTable& rows, const StudyParams& params);
+  std::string (*summarize)(const CsvTable& rows);
 };
 
 const std::vector<Study>& all_studies();
-
-// The runs of `input` at every size (a model is taken whole, once): calls add(label, source, size).
-template <class Add>
-void for_each_source(const StudyParams& params, const std::string& input, Add add);
 
 // Resolves a model name (a file in the data directory, with or without its extension) or a path;
 // empty when it is neither.
 std::string model_path(const std::string& data_dir, const std::string& name);
 bool is_generator_family(const std::string& name);
 
+// A run of the dtlab engine on `source` with the given seed; the other options at their defaults.
+RunSpec dtlab_run(const std::string& input, const std::string& source, std::int64_t size,
+                  std::uint64_t seed);
+
+// The runs of `input` at every size (a model is taken whole, once): calls add(label, source, size).
 template <class Add>
 void for_each_source(const StudyParams& params, const std::string& input, Add add) {
   if (is_generator_family(input)) {

@@ -28,17 +28,12 @@ Aggregate aggregate(const std::vector<double>& values) {
   return a;
 }
 
-std::vector<double> values_of(const CsvTable& table, const std::vector<const Row*>& rows,
-                              const std::string& column) {
-  std::vector<double> v;
-  v.reserve(rows.size());
-  for (const Row* row : rows) v.push_back(table.number(*row, column));
-  return v;
-}
-
 Aggregate aggregate_of(const CsvTable& table, const std::vector<const Row*>& rows,
                        const std::string& column) {
-  return aggregate(values_of(table, rows, column));
+  std::vector<double> values;
+  values.reserve(rows.size());
+  for (const Row* row : rows) values.push_back(table.number(*row, column));
+  return aggregate(values);
 }
 
 std::string fixed(double value, int decimals) {
@@ -51,6 +46,28 @@ std::string fixed(double value, int decimals) {
 std::string mean_median_max(const Aggregate& a) {
   if (a.count == 0) return "-";
   return fixed(a.mean, 1) + " / " + fixed(a.median, 1) + " / " + fixed(a.max, 0);
+}
+
+std::string thousands(double value) {
+  if (std::isnan(value)) return "-";
+  const std::string digits = std::to_string(std::llround(value));
+  std::string out;
+  const std::size_t start = digits[0] == '-' ? 1 : 0;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > start && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+std::string threads_cell(const CsvTable& table, const Row& row) {
+  std::string cell = table.get(row, "threads");
+  if (table.get(row, "oversubscribed") == "true") cell += " (oversubscribed)";
+  return cell;
+}
+
+bool is_ok(const CsvTable& table, const Row& row) {
+  return table.get(row, "status") == "ok";
 }
 
 std::string MarkdownTable::str() const {

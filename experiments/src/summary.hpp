@@ -47,8 +47,6 @@ struct Aggregate {
 };
 
 Aggregate aggregate(const std::vector<double>& values);
-std::vector<double> values_of(const CsvTable& table, const std::vector<const Row*>& rows,
-                              const std::string& column);
 Aggregate aggregate_of(const CsvTable& table, const std::vector<const Row*>& rows,
                        const std::string& column);
 
@@ -56,12 +54,17 @@ Aggregate aggregate_of(const CsvTable& table, const std::vector<const Row*>& row
 std::string fixed(double value, int decimals);
 // "mean / median / max" of a count.
 std::string mean_median_max(const Aggregate& a);
+// A whole number with thousands separators: 12,345; "-" for NaN.
+std::string thousands(double value);
+// The row's thread count, with "(oversubscribed)" when it exceeds the hardware threads.
+std::string threads_cell(const CsvTable& table, const Row& row);
+// The run finished with a result (status ok).
+bool is_ok(const CsvTable& table, const Row& row);
 
 class MarkdownTable {
  public:
   explicit MarkdownTable(std::vector<std::string> header) : header_(std::move(header)) {}
   void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
-  [[nodiscard]] bool empty() const { return rows_.empty(); }
   [[nodiscard]] std::string str() const;
 
  private:

@@ -1,7 +1,6 @@
 // burglary-errors: what the burglary method leaves (non-Delaunay faces, reflex boundary edges,
 // potential problems, suspicious tetrahedra) before and after star splaying, beside the deadlocks
 // and give-ups of the optimistic methods on the same points, seeds and thread counts.
-#include "../summary.hpp"
 #include "studies.hpp"
 
 namespace dtlab::experiments {
@@ -38,13 +37,20 @@ std::vector<RunSpec> plan(const StudyParams& p) {
   return runs;
 }
 
-std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
-  MarkdownTable table(
-      {"input", "points", "location", "threads", "runs", "burglaries per 1k points",
-       "potential problems", "suspicious tetrahedra", "non-Delaunay faces (mean / median / max)",
-       "reflex boundary edges (mean / median / max)", "left after splaying (max)",
-       "stars splayed (median)", "repair s (median)", "repair / run",
-       "detect: deadlocks, give-ups (median)", "prevent: give-ups, priority raises (median)"});
+// "median / max" of a column over rows; "-" when there are none.
+std::string median_max(const CsvTable& t, const std::vector<const Row*>& rows, const char* column) {
+  if (rows.empty()) return "-";
+  const Aggregate a = aggregate_of(t, rows, column);
+  return fixed(a.median, 0) + " / " + fixed(a.max, 0);
+}
+
+std::string summarize(const CsvTable& t) {
+  MarkdownTable table({"input", "points", "location", "threads", "runs", "burglaries per 1k points",
+                       "potential problems", "suspicious tetrahedra",
+                       "non-Delaunay faces (mean / median / max)",
+                       "reflex boundary edges (mean / median / max)", "left after splaying (max)",
+                       "stars splayed (median)", "repair s (median)", "repair / run",
+                       "detect: deadlocks (median / max)", "prevent: give-ups (median / max)"});
   const std::vector<std::string> keys = {"input", "size_asked", "location", "threads"};
   const auto burglary = group_rows(
       t, keys, [&](const Row& r) { return is_ok(t, r) && t.get(r, "method") == "burglary"; });
@@ -61,7 +67,7 @@ std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
     const double run = aggregate_of(t, g.rows, "seconds.total").median;
     const auto detect = others(g.key, "optimistic-detect");
     const auto prevent = others(g.key, "optimistic-prevent");
-    table.add({g.key[0], thousands(points), g.key[2], threads_cell(t, g.rows),
+    table.add({g.key[0], thousands(points), g.key[2], threads_cell(t, *g.rows.front()),
                std::to_string(g.rows.size()),
                fixed(aggregate_of(t, g.rows, "burglaries").mean * 1000.0 / points, 2),
                fixed(aggregate_of(t, g.rows, "potential_problems").mean, 1),
@@ -70,20 +76,17 @@ std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
                mean_median_max(aggregate_of(t, g.rows, "post_check.reflex_boundary_edges")),
                fixed(aggregate_of(t, g.rows, "post_check.non_delaunay_after").max, 0),
                fixed(aggregate_of(t, g.rows, "splay.stars").median, 0), fixed(repair, 3),
-               fixed(repair / (run - repair), 3),
-               detect.empty() ? "-"
-                              : fixed(aggregate_of(t, detect, "deadlocks").median, 0) + ", " +
-                                    fixed(aggregate_of(t, detect, "give_ups").median, 0),
-               prevent.empty() ? "-"
-                               : fixed(aggregate_of(t, prevent, "give_ups").median, 0) + ", " +
-                                     fixed(aggregate_of(t, prevent, "priority_raises").median, 0)});
+               fixed(repair / (run - repair), 3), median_max(t, detect, "deadlocks"),
+               median_max(t, prevent, "give_ups")});
   }
   return table.str() +
          "\nNon-Delaunay faces and reflex boundary edges are the exact validator's counts right "
          "after the parallel run (`post_check.*` in the CSV); \"left after splaying\" is the same "
          "count (faces + reflex edges) on the mesh star splaying returned, which must be 0. "
-         "\"repair / run\" is the repair's seconds over the run's seconds without it. Thread "
-         "counts above the machine's hardware threads are marked oversubscribed.\n";
+         "\"repair / run\" is the repair's seconds over the run's seconds without it. The "
+         "optimistic methods ran on the same points, seeds and thread counts (detection gives up "
+         "once per deadlock; prevention gives up instead of waiting for a thread of higher "
+         "priority). Thread counts above the CPUs available are marked oversubscribed.\n";
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 // deadlocks (paper Fig. 14): deadlocks, stale wait cycles, give-ups and burglaries of the
 // optimistic methods and burglary, against the thread count and the size.
-#include "../summary.hpp"
 #include "studies.hpp"
 
 namespace dtlab::experiments {
@@ -33,7 +32,7 @@ std::vector<RunSpec> plan(const StudyParams& p) {
   return runs;
 }
 
-std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
+std::string summarize(const CsvTable& t) {
   MarkdownTable table({"input", "points", "location", "threads", "method", "runs", "waits",
                        "deadlocks", "deadlocks per 1k points", "stale cycles", "give-ups",
                        "priority raises", "burglaries", "seconds"});
@@ -44,7 +43,7 @@ std::string summarize(const CsvTable& t, const StudyParams& /*params*/) {
       return fixed(aggregate_of(t, g.rows, column).median, 0);
     };
     const double deadlocks = aggregate_of(t, g.rows, "deadlocks").median;
-    table.add({g.key[0], thousands(points), g.key[2], threads_cell(t, g.rows), g.key[4],
+    table.add({g.key[0], thousands(points), g.key[2], threads_cell(t, *g.rows.front()), g.key[4],
                std::to_string(g.rows.size()), median("waits"), fixed(deadlocks, 0),
                fixed(1000.0 * deadlocks / points, 2), median("stale_cycles"), median("give_ups"),
                median("priority_raises"), median("burglaries"),

@@ -14,12 +14,4 @@ Study deadlocks_study();
 Study hull_loss_study();
 Study compare_study();
 
-// A run of the dtlab engine on `source` with the given seed; the rest default.
-RunSpec dtlab_run(const std::string& input, const std::string& source, std::int64_t size,
-                  std::uint64_t seed);
-// "12,345" and "oversubscribed" marks: the shared cell formats.
-std::string thousands(double value);
-std::string threads_cell(const CsvTable& table, const std::vector<const Row*>& rows);
-bool is_ok(const CsvTable& table, const Row& row);
-
 }  // namespace dtlab::experiments

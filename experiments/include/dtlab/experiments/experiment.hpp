@@ -1,6 +1,7 @@
 #pragma once
 // `dtlab experiment NAME`: one study of the paper's questions, run in-process (each run in a forked
-// child, so that its peak memory is its own and a failed run cannot end the study), written as
+// child, so that its audit counters and peak memory are its own and a failed run cannot end the
+// study), written as
 // DIR/NAME.csv (a row per run, appended as it finishes), DIR/NAME.md (the summary table),
 // DIR/NAME.png (the plot, by tools/plot_study.py) and DIR/machine.json.
 #include <cstdint>
@@ -31,8 +32,11 @@ struct StudyListing {
 
 std::vector<StudyListing> list_studies();
 
-// Runs study `name`; returns the exit code (0, or 2 with a message on stderr: unknown study,
-// unwritable directory, a failed plot). A run that fails is a row with status "error", not an exit.
+// Runs study `name`; returns 0, or 2 with a message on stderr for an unknown study, a missing
+// --out or a failed plot. Bad parameters (an unknown input or location, --threads for a study
+// that takes none), an unwritable directory or a CSV that cannot be resumed throw
+// (std::invalid_argument, std::runtime_error, std::filesystem::filesystem_error); the CLI
+// reports them and exits 2. A run that fails is a row with status "error" or "crashed".
 int run_experiment(const std::string& name, const ExperimentOptions& options);
 
 }  // namespace dtlab::experiments

@@ -1,0 +1,81 @@
+#include "child_run.hpp"
+
+#include <sys/resource.h>
+
+#include "dtlab/engine/validator.hpp"
+#include "dtlab/experiments/cgal_engine.hpp"
+#include "dtlab/predicates/audit.hpp"
+#include "flat_json.hpp"
+
+namespace dtlab::experiments {
+namespace {
+
+std::uint64_t peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+void put_audit(Cells& cells) {
+  const predicates::AuditCounters& counters = predicates::audit_counters();
+  std::uint64_t calls = 0;
+  std::uint64_t wrong = 0;
+  std::uint64_t by_stage[predicates::kStageCount] = {};
+  for (int p = 0; p < predicates::kPredicateCount; ++p) {
+    calls += counters.calls[p].load();
+    const std::uint64_t w = counters.wrong_sign[p].load();
+    wrong += w;
+    cells[std::string("audit.wrong_sign.") +
+          predicates::predicate_name(static_cast<predicates::Predicate>(p))] = std::to_string(w);
+    for (int s = 0; s < predicates::kStageCount; ++s) by_stage[s] += counters.by_stage[p][s].load();
+  }
+  cells["audit.calls"] = std::to_string(calls);
+  cells["audit.wrong_sign"] = std::to_string(wrong);
+  for (int s = 0; s < predicates::kStageCount; ++s) {
+    cells[std::string("audit.stage.") + predicates::stage_name(static_cast<predicates::Stage>(s))] =
+        std::to_string(by_stage[s]);
+  }
+}
+
+Cells measure_cgal(const RunSpec& spec, const std::vector<predicates::Point3>& points) {
+  const int threads = spec.engine == Engine::CgalParallel ? spec.options.threads : 1;
+  const CgalRun run = run_cgal(points, threads);
+  Cells cells;
+  cells["points"] = std::to_string(points.size());
+  cells["tetrahedra"] = std::to_string(run.finite_cells);
+  cells["seconds.total"] = nlohmann::json(run.seconds).dump();
+  cells["threads"] = std::to_string(threads);
+  cells["method"] = to_string(spec.engine);
+  cells["seed"] = std::to_string(spec.options.seed);
+  const std::uint64_t peak = peak_rss_bytes();
+  cells["peak_rss_bytes"] = std::to_string(peak);
+  cells["bytes_per_point"] = std::to_string(points.empty() ? 0 : peak / points.size());
+  return cells;
+}
+
+}  // namespace
+
+Cells measure_run(const RunSpec& spec, const std::vector<predicates::Point3>& points) {
+  if (spec.engine != Engine::Dtlab) return measure_cgal(spec, points);
+  engine::TriangulateOptions options = spec.options;
+  options.progress = false;
+  options.audit = spec.audit;
+  if (spec.audit) predicates::audit_counters().reset();
+  const engine::Triangulation result = engine::triangulate(points, options);
+  Cells cells;
+  for (auto& [key, value] : flatten(nlohmann::ordered_json::parse(engine::stats_json(
+           result.stats, options, engine::to_string(options.method), options.threads)))) {
+    cells[key] = value;
+  }
+  if (spec.audit) put_audit(cells);
+  if (spec.validate) {
+    const engine::ValidationReport report =
+        engine::validate(points, result.tetrahedra, engine::ValidateWith::Adaptive);
+    for (auto& [key, value] : flatten(nlohmann::ordered_json::parse(report.json()))) {
+      cells["validation." + key] = value;
+    }
+  }
+  return cells;
+}
+
+}  // namespace dtlab::experiments
