@@ -3,7 +3,7 @@
 // wall time per triangulation, medians of 3 repetitions, points per second. Every engine runs in
 // this one process, so peak memory is not measured here: `dtlab experiment compare` (each run in
 // its own process) and bench/cgal_compare give bytes per point.
-//   cgal_gbench [--benchmark_filter=uniform:1000000] [google benchmark flags]
+//   cgal_gbench [--benchmark_filter=uniform_1000000] [google benchmark flags]
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -37,7 +37,8 @@ void run_dtlab(benchmark::State& state, const std::string& family, std::int64_t 
   options.threads = threads;
   if (threads > 1) options.distribution = dtlab::engine::Distribution::Blocks;
   std::size_t tetrahedra = 0;
-  for (auto _ : state) {
+  for (auto iteration : state) {
+    (void)iteration;
     const auto result = dtlab::engine::triangulate(points, options);
     tetrahedra = result.tetrahedra.size();
     benchmark::DoNotOptimize(result.tetrahedra.data());
@@ -46,56 +47,59 @@ void run_dtlab(benchmark::State& state, const std::string& family, std::int64_t 
   state.counters["tetrahedra"] = static_cast<double>(tetrahedra);
 }
 
-void run_cgal(benchmark::State& state, const std::string& family, std::int64_t n, int threads) {
+void dtlab_walk(benchmark::State& state, const char* family, std::int64_t n) {
+  run_dtlab(state, family, n, dtlab::engine::Location::Walk, dtlab::engine::Method::Sequential, 1);
+}
+void dtlab_dag(benchmark::State& state, const char* family, std::int64_t n) {
+  run_dtlab(state, family, n, dtlab::engine::Location::Dag, dtlab::engine::Method::Sequential, 1);
+}
+void dtlab_walk_optimistic_detect_2t(benchmark::State& state, const char* family, std::int64_t n) {
+  run_dtlab(state, family, n, dtlab::engine::Location::Walk,
+            dtlab::engine::Method::OptimisticDetect, 2);
+}
+
+void run_cgal(benchmark::State& state, const char* family, std::int64_t n, int threads) {
+  if (threads > 1 && !dtlab::experiments::cgal_parallel_available()) {
+    state.SkipWithError("this build has no TBB: CGAL's parallel mode is not available");
+    return;
+  }
   const auto& points = points_of(family, n);
   std::uint64_t cells = 0;
-  for (auto _ : state) cells = dtlab::experiments::run_cgal(points, threads).finite_cells;
+  for (auto iteration : state) {
+    (void)iteration;
+    cells = dtlab::experiments::run_cgal(points, threads).finite_cells;
+  }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
   state.counters["tetrahedra"] = static_cast<double>(cells);
 }
-
-void register_all() {
-  using dtlab::engine::Location;
-  using dtlab::engine::Method;
-  const std::vector<std::pair<std::string, std::int64_t>> inputs = {
-      {"uniform", 1000000}, {"uniform", 100000}, {"grid", 1000000}, {"sphere", 100000}};
-  for (const auto& [family, n] : inputs) {
-    const std::string input = family + ":" + std::to_string(n);
-    const auto add = [&](const std::string& engine, auto fn) {
-      benchmark::RegisterBenchmark((input + "/" + engine).c_str(), fn)
-          ->Unit(benchmark::kSecond)
-          ->UseRealTime()
-          ->Iterations(1)
-          ->Repetitions(3)
-          ->ReportAggregatesOnly(true);
-    };
-    const std::string f = family;
-    const std::int64_t size = n;
-    add("dtlab_walk", [f, size](benchmark::State& s) {
-      run_dtlab(s, f, size, Location::Walk, Method::Sequential, 1);
-    });
-    if (size <= 100000) {  // the DAG mode takes about 44 s at 1M points
-      add("dtlab_dag", [f, size](benchmark::State& s) {
-        run_dtlab(s, f, size, Location::Dag, Method::Sequential, 1);
-      });
-    }
-    add("cgal", [f, size](benchmark::State& s) { run_cgal(s, f, size, 1); });
-    add("dtlab_walk_optimistic_detect_2t", [f, size](benchmark::State& s) {
-      run_dtlab(s, f, size, Location::Walk, Method::OptimisticDetect, 2);
-    });
-    if (dtlab::experiments::cgal_parallel_available()) {
-      add("cgal_parallel_2t", [f, size](benchmark::State& s) { run_cgal(s, f, size, 2); });
-    }
-  }
+void cgal(benchmark::State& state, const char* family, std::int64_t n) {
+  run_cgal(state, family, n, 1);
+}
+void cgal_parallel_2t(benchmark::State& state, const char* family, std::int64_t n) {
+  run_cgal(state, family, n, 2);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  register_all();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// One iteration per repetition, 3 repetitions: the aggregates (mean, median, stddev) are over
+// whole triangulations.
+#define DTLAB_CASE(engine, name, family, n)  \
+  BENCHMARK_CAPTURE(engine, name, family, n) \
+      ->Unit(benchmark::kSecond)             \
+      ->UseRealTime()                        \
+      ->Iterations(1)                        \
+      ->Repetitions(3)                       \
+      ->ReportAggregatesOnly(true)
+#define DTLAB_INPUT(name, family, n)                            \
+  DTLAB_CASE(dtlab_walk, name, family, n);                      \
+  DTLAB_CASE(cgal, name, family, n);                            \
+  DTLAB_CASE(dtlab_walk_optimistic_detect_2t, name, family, n); \
+  DTLAB_CASE(cgal_parallel_2t, name, family, n)
+
+DTLAB_INPUT(uniform_1000000, "uniform", 1000000);
+DTLAB_INPUT(uniform_100000, "uniform", 100000);
+DTLAB_CASE(dtlab_dag, uniform_100000, "uniform", 100000);  // the DAG mode: about 44 s at 1M
+DTLAB_INPUT(grid_1000000, "grid", 1000000);
+DTLAB_INPUT(sphere_100000, "sphere", 100000);
+
+BENCHMARK_MAIN();

@@ -54,6 +54,9 @@ def main():
     if len(sys.argv) != 3 or sys.argv[2] not in FILLED:
         fail("usage: check_study_output.py DIR {%s}" % ",".join(FILLED))
     directory, name = sys.argv[1:]
+    for file in (name + ".csv", name + ".md", name + ".png", "machine.json"):
+        if not os.path.isfile(os.path.join(directory, file)):
+            fail("%s is missing in %s" % (file, directory))
     path = os.path.join(directory, name + ".csv")
     with open(path, newline="") as f:
         reader = csv.reader(f)
