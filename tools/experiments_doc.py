@@ -4,8 +4,10 @@
 Usage: tools/experiments_doc.py OUT   (OUT: the directory tools/run_experiments.sh wrote)
 
 In the template, a line `<!-- study: RUN/NAME -->` becomes OUT/RUN/NAME.md (its headings one level
-down), followed by its plot, copied to docs/img/experiments/RUN.png. Every other line is copied.
+down), followed by a link to its CSV, copied xz-compressed to docs/data/experiments/RUN.csv.xz, and its
+plot, copied to docs/img/experiments/RUN.png. Every other line is copied.
 """
+import lzma
 import os
 import re
 import shutil
@@ -22,6 +24,8 @@ def main():
     template = os.path.join(ROOT, "docs", "experiments.in.md")
     images = os.path.join(ROOT, "docs", "img", "experiments")
     os.makedirs(images, exist_ok=True)
+    data = os.path.join(ROOT, "docs", "data", "experiments")
+    os.makedirs(data, exist_ok=True)
     lines = []
     for line in open(template).read().splitlines():
         m = MARKER.match(line)
@@ -35,6 +39,15 @@ def main():
                      % (md_path, out, run))
         for study_line in open(md_path).read().splitlines():
             lines.append("#" + study_line if study_line.startswith("#") else study_line)
+        csv_path = os.path.join(out, run, name + ".csv")
+        if os.path.exists(csv_path):
+            # Every run's row, kept beside the doc (xz: the CSVs compress about tenfold).
+            with open(csv_path, "rb") as src, lzma.open(os.path.join(data, run + ".csv.xz"),
+                                                        "wb", preset=9) as dst:
+                dst.write(src.read())
+            lines.append("")
+            lines.append("Every run, with every option and stat: "
+                         "[data/experiments/%s.csv.xz](data/experiments/%s.csv.xz)." % (run, run))
         png = os.path.join(out, run, name + ".png")
         if os.path.exists(png):
             shutil.copyfile(png, os.path.join(images, run + ".png"))

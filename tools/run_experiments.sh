@@ -2,7 +2,7 @@
 # The runs behind docs/experiments.md: every study of `dtlab experiment`, one after the other (never
 # beside other work: the timings are the machine's), into OUT (default build/experiments), then
 # tools/experiments_doc.py OUT rewrites docs/experiments.md from their tables.
-# Usage: tools/run_experiments.sh [OUT] [STUDY ...]   (about 50 minutes on a 2-core machine)
+# Usage: tools/run_experiments.sh [OUT] [STUDY ...]   (about 75 minutes on a 2-core machine; it resumes what an earlier run in OUT finished)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dtlab=build/release/cli/dtlab
