@@ -2,7 +2,7 @@
 # The runs behind docs/experiments.md: every study of `dtlab experiment`, one after the other (never
 # beside other work: the timings are the machine's), into OUT (default build/experiments), then
 # tools/experiments_doc.py OUT rewrites docs/experiments.md from their tables.
-# Usage: tools/run_experiments.sh [OUT] [STUDY ...]   (about 75 minutes on a 2-core machine; it resumes what an earlier run in OUT finished)
+# Usage: tools/run_experiments.sh [OUT] [STUDY ...]   (about 90 minutes on a 2-core machine; it resumes what an earlier run in OUT finished)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dtlab=build/release/cli/dtlab
@@ -10,6 +10,7 @@ out="${1:-build/experiments}"
 shift || true
 declare -A args=(
   [burglary-errors]="--sizes 10000,50000"
+  [burglary-errors-1m]="--inputs uniform --sizes 1000000 --threads 2 --location walk"
   [predicate-errors]=""
   [speedup]="--sizes 50000,200000 --seeds 3"
   [speedup-1m]="--sizes 1000000 --location walk --threads 1,2 --seeds 3 --inputs uniform"
@@ -19,7 +20,7 @@ declare -A args=(
   [hull-loss]=""
   [compare]=""
 )
-order=(burglary-errors predicate-errors speedup speedup-1m breakdown flips deadlocks hull-loss compare)
+order=(burglary-errors burglary-errors-1m predicate-errors speedup speedup-1m breakdown flips deadlocks hull-loss compare)
 [ $# -gt 0 ] && order=("$@")
 for run in "${order[@]}"; do
   study="${run%-1m}"
