@@ -81,4 +81,22 @@ void for_each_source(const StudyParams& params, const std::string& input, Add ad
   }
 }
 
+// The plans' common outer loops: every input at every size (a model once), every seed from 1, every
+// location, in that order, as a dtlab run with those set; fn(spec) adds the study's runs.
+template <class Fn>
+void for_each_base_run(const StudyParams& params, Fn fn) {
+  for (const std::string& input : params.inputs) {
+    for_each_source(
+        params, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
+          for (int seed = 1; seed <= params.seeds; ++seed) {
+            for (const engine::Location location : params.locations) {
+              RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
+              spec.options.location = location;
+              fn(spec);
+            }
+          }
+        });
+  }
+}
+
 }  // namespace dtlab::experiments

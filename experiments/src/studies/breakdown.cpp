@@ -7,19 +7,10 @@ namespace {
 
 std::vector<RunSpec> plan(const StudyParams& p) {
   std::vector<RunSpec> runs;
-  for (const std::string& input : p.inputs) {
-    for_each_source(
-        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
-          for (int seed = 1; seed <= p.seeds; ++seed) {
-            for (const engine::Location location : p.locations) {
-              RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
-              spec.options.location = location;
-              spec.variant = "sequential";
-              runs.push_back(spec);
-            }
-          }
-        });
-  }
+  for_each_base_run(p, [&](RunSpec base) {
+    base.variant = "sequential";
+    runs.push_back(base);
+  });
   return runs;
 }
 

@@ -9,26 +9,18 @@ using engine::Method;
 
 std::vector<RunSpec> plan(const StudyParams& p) {
   std::vector<RunSpec> runs;
-  for (const std::string& input : p.inputs) {
-    for_each_source(
-        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
-          for (int seed = 1; seed <= p.seeds; ++seed) {
-            for (const engine::Location location : p.locations) {
-              for (const int threads : p.threads) {
-                for (const Method method :
-                     {Method::OptimisticDetect, Method::OptimisticPrevent, Method::Burglary}) {
-                  RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
-                  spec.options.location = location;
-                  spec.options.method = method;
-                  spec.options.threads = threads;
-                  spec.variant = engine::to_string(method);
-                  runs.push_back(spec);
-                }
-              }
-            }
-          }
-        });
-  }
+  for_each_base_run(p, [&](RunSpec base) {
+    for (const int threads : p.threads) {
+      for (const Method method :
+           {Method::OptimisticDetect, Method::OptimisticPrevent, Method::Burglary}) {
+        RunSpec spec = base;
+        spec.options.method = method;
+        spec.options.threads = threads;
+        spec.variant = engine::to_string(method);
+        runs.push_back(spec);
+      }
+    }
+  });
   return runs;
 }
 

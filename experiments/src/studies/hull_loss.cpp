@@ -7,24 +7,15 @@ namespace {
 
 std::vector<RunSpec> plan(const StudyParams& p) {
   std::vector<RunSpec> runs;
-  for (const std::string& input : p.inputs) {
-    for_each_source(
-        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
-          for (int seed = 1; seed <= p.seeds; ++seed) {
-            for (const engine::Location location : p.locations) {
-              for (const engine::Bounding bounding :
-                   {engine::Bounding::Infinite, engine::Bounding::AuxTet}) {
-                RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
-                spec.options.location = location;
-                spec.options.bounding = bounding;
-                spec.variant = engine::to_string(bounding);
-                spec.validate = true;
-                runs.push_back(spec);
-              }
-            }
-          }
-        });
-  }
+  for_each_base_run(p, [&](RunSpec base) {
+    for (const engine::Bounding bounding : {engine::Bounding::Infinite, engine::Bounding::AuxTet}) {
+      RunSpec spec = base;
+      spec.options.bounding = bounding;
+      spec.variant = engine::to_string(bounding);
+      spec.validate = true;
+      runs.push_back(spec);
+    }
+  });
   return runs;
 }
 

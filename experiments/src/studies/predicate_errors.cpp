@@ -31,25 +31,17 @@ constexpr Config kConfigs[] = {
 
 std::vector<RunSpec> plan(const StudyParams& p) {
   std::vector<RunSpec> runs;
-  for (const std::string& input : p.inputs) {
-    for_each_source(
-        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
-          for (int seed = 1; seed <= p.seeds; ++seed) {
-            for (const engine::Location location : p.locations) {
-              for (const Config& c : kConfigs) {
-                RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
-                spec.variant = c.variant;
-                spec.options.kernel = c.kernel;
-                spec.options.location = location;
-                if (c.repair) spec.options.repair = engine::Repair::Splay;
-                spec.audit = c.audit;
-                spec.validate = !c.audit;
-                runs.push_back(spec);
-              }
-            }
-          }
-        });
-  }
+  for_each_base_run(p, [&](RunSpec base) {
+    for (const Config& c : kConfigs) {
+      RunSpec spec = base;
+      spec.variant = c.variant;
+      spec.options.kernel = c.kernel;
+      if (c.repair) spec.options.repair = engine::Repair::Splay;
+      spec.audit = c.audit;
+      spec.validate = !c.audit;
+      runs.push_back(spec);
+    }
+  });
   return runs;
 }
 

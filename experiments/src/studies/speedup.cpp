@@ -17,32 +17,23 @@ constexpr Method kParallelMethods[] = {Method::Pessimistic, Method::OptimisticDe
 
 std::vector<RunSpec> plan(const StudyParams& p) {
   std::vector<RunSpec> runs;
-  for (const std::string& input : p.inputs) {
-    for_each_source(
-        p, input, [&](const std::string& label, const std::string& source, std::int64_t n) {
-          // A round is one seed: its points (for a generator) and its insertion order.
-          for (int round = 1; round <= p.seeds; ++round) {
-            for (const engine::Location location : p.locations) {
-              RunSpec sequential = dtlab_run(label, source, n, static_cast<std::uint64_t>(round));
-              sequential.options.location = location;
-              sequential.variant = "sequential";
-              runs.push_back(sequential);
-              for (const Method method : kParallelMethods) {
-                for (const int threads : p.threads) {
-                  // The batch method needs a locating and an inserting thread: at --threads 1 it
-                  // still runs two, so a 1-thread row would not be one thread.
-                  if (method == Method::Batch && threads < 2) continue;
-                  RunSpec spec = sequential;
-                  spec.options.method = method;
-                  spec.options.threads = threads;
-                  spec.variant = engine::to_string(method);
-                  runs.push_back(spec);
-                }
-              }
-            }
-          }
-        });
-  }
+  for_each_base_run(p, [&](RunSpec base) {
+    // A round is one seed: its points (for a generator) and its insertion order.
+    base.variant = "sequential";
+    runs.push_back(base);
+    for (const Method method : kParallelMethods) {
+      for (const int threads : p.threads) {
+        // The batch method needs a locating and an inserting thread: at --threads 1 it still
+        // runs two, so a 1-thread row would not be one thread.
+        if (method == Method::Batch && threads < 2) continue;
+        RunSpec spec = base;
+        spec.options.method = method;
+        spec.options.threads = threads;
+        spec.variant = engine::to_string(method);
+        runs.push_back(spec);
+      }
+    }
+  });
   return runs;
 }
 
