@@ -1,8 +1,10 @@
 // Adaptive insphere (stages B, C, D) by the Laplace expansion along the column pair
 // (x, y) | (z, lift), and the lifted in-circle test of four coplanar points
 // (docs/predicates.md).
+#include <array>
 #include <cmath>
 
+#include "dtlab/predicates/detail/insphere_double_word.hpp"
 #include "dtlab/predicates/error_bounds.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "dtlab/predicates/valid_range.hpp"
@@ -14,11 +16,10 @@ namespace {
 using detail::Fixed;
 
 // One row p - e: rounded coordinates, their tails, and the squared length of the rounded values
-// (exactly and in floating point).
+// in floating point (for stage C).
 struct Row {
   double x, y, z;
   double tx, ty, tz;
-  Fixed<6> lift_exact;
   double lift;
 };
 
@@ -26,9 +27,7 @@ Row make_row(const Point3& p, const Point3& e) {
   const expansion::Exact2 dx = expansion::difference(p.x, e.x);
   const expansion::Exact2 dy = expansion::difference(p.y, e.y);
   const expansion::Exact2 dz = expansion::difference(p.z, e.z);
-  Row r{dx.hi, dy.hi, dz.hi, dx.lo, dy.lo, dz.lo, {}, 0.0};
-  r.lift_exact = (detail::exact_product(r.x, r.x) + detail::exact_product(r.y, r.y)) +
-                 detail::exact_product(r.z, r.z);
+  Row r{dx.hi, dy.hi, dz.hi, dx.lo, dy.lo, dz.lo, 0.0};
   r.lift = (r.x * r.x + r.y * r.y) + r.z * r.z;
   return r;
 }
@@ -37,14 +36,37 @@ bool has_tail(const Row& r) {
   return r.tx != 0.0 || r.ty != 0.0 || r.tz != 0.0;
 }
 
+// The squared length of a row's rounded values, exactly.
+Fixed<6> exact_lift(const Row& r) {
+  return (detail::exact_product(r.x, r.x) + detail::exact_product(r.y, r.y)) +
+         detail::exact_product(r.z, r.z);
+}
+
 // The exact products m_ij n_kl + m_kl n_ij of the rounded rows for the complementary pairs
-// {i, j} and {k, l}: xy minor times z-lift minor, both ways round.
-Fixed<384> complementary_pair(const Row& ri, const Row& rj, const Row& rk, const Row& rl) {
-  const Fixed<4> m_ij = detail::exact_product(ri.x, rj.y) - detail::exact_product(rj.x, ri.y);
-  const Fixed<4> m_kl = detail::exact_product(rk.x, rl.y) - detail::exact_product(rl.x, rk.y);
-  const Fixed<24> n_kl = rl.lift_exact * rk.z - rk.lift_exact * rl.z;
-  const Fixed<24> n_ij = rj.lift_exact * ri.z - ri.lift_exact * rj.z;
+// {i, j} and {k, l}: xy minor times z-lift minor, both ways round. lift[i]: exact_lift of row i.
+Fixed<384> complementary_pair(const std::array<Row, 4>& r, const std::array<Fixed<6>, 4>& lift,
+                              std::size_t i, std::size_t j, std::size_t k, std::size_t l) {
+  const Fixed<4> m_ij =
+      detail::exact_product(r[i].x, r[j].y) - detail::exact_product(r[j].x, r[i].y);
+  const Fixed<4> m_kl =
+      detail::exact_product(r[k].x, r[l].y) - detail::exact_product(r[l].x, r[k].y);
+  const Fixed<24> n_kl = lift[l] * r[k].z - lift[k] * r[l].z;
+  const Fixed<24> n_ij = lift[j] * r[i].z - lift[i] * r[j].z;
   return m_ij * n_kl + m_kl * n_ij;
+}
+
+// Stage B without tails: X is the exact determinant. Its sign from the double word D when D is
+// clear of 0, or 0 from the grid certificate, else (kUndecided) from the expansion (Lemma 7).
+int exact_rows_sign_double_word(const std::array<detail::RoundedRow, 4>& rounded, double value,
+                                double permanent) {
+  const double size = std::fabs(value);
+  const double error = bounds::kInsphereDoubleWord * permanent;
+  if (size > 2.0 * error) return detail::sign_of(value);
+  // X is a multiple of 2^(5 g); |X| <= |value| (1 + eps) + error < 2 |value| + 2 error.
+  const int g = detail::common_power_of_two(rounded);
+  if (g == detail::kAllZero) return 0;
+  if (2.0 * size + 2.0 * error < std::ldexp(1.0, 5 * g)) return 0;
+  return detail::kUndecided;
 }
 
 // First-order changes caused by the tails, with the float values of the rounded rows.
@@ -74,28 +96,38 @@ StagedSign AdaptiveKernel::insphere_beyond_a(const Point3& a, const Point3& b, c
   if (!in_expansion_range(a, b, c, d, e)) {
     return {ExactKernel::insphere(a, b, c, d, e), Stage::Gmp};
   }
-  const Row r0 = make_row(a, e);
-  const Row r1 = make_row(b, e);
-  const Row r2 = make_row(c, e);
-  const Row r3 = make_row(d, e);
+  const std::array<Row, 4> rows{make_row(a, e), make_row(b, e), make_row(c, e), make_row(d, e)};
+  const Row& r0 = rows[0];
+  const Row& r1 = rows[1];
+  const Row& r2 = rows[2];
+  const Row& r3 = rows[3];
+  const bool tails = has_tail(r0) || has_tail(r1) || has_tail(r2) || has_tail(r3);
 
-  // Stage B (Lemma 2): -det4 of the rounded rows exactly, in the grouping of stage A.
-  const Fixed<1152> on_rounded =
-      complementary_pair(r0, r2, r1, r3) -
-      (complementary_pair(r0, r1, r2, r3) + complementary_pair(r0, r3, r1, r2));
-  double det = on_rounded.approximate();
-  const double bound_b = bounds::kInsphereB * permanent;
-  if (det > bound_b || -det > bound_b) return {detail::sign_of(det), Stage::B};
-  if (!has_tail(r0) && !has_tail(r1) && !has_tail(r2) && !has_tail(r3)) {
+  // Stage B (Lemmas 2 and 7): -det4 of the rounded rows, X, in double words (D); exactly, as an
+  // expansion in the grouping of stage A, only where the rows are exact and D cannot settle it.
+  const std::array<detail::RoundedRow, 4> rounded{
+      {{r0.x, r0.y, r0.z}, {r1.x, r1.y, r1.z}, {r2.x, r2.y, r2.z}, {r3.x, r3.y, r3.z}}};
+  double det = detail::insphere_rounded_double_word(rounded).hi;
+  if (!tails) {
+    const int sign = exact_rows_sign_double_word(rounded, det, permanent);
+    if (sign != detail::kUndecided) return {sign, Stage::B};
+    const std::array<Fixed<6>, 4> lift{exact_lift(r0), exact_lift(r1), exact_lift(r2),
+                                       exact_lift(r3)};
+    const Fixed<1152> on_rounded =
+        complementary_pair(rows, lift, 0, 2, 1, 3) -
+        (complementary_pair(rows, lift, 0, 1, 2, 3) + complementary_pair(rows, lift, 0, 3, 1, 2));
     return {on_rounded.sign(), Stage::B};  // exact differences: the value is exact
   }
+  const double bound_b = bounds::kInsphereBDoubleWord * permanent;
+  if (det > bound_b || -det > bound_b) return {detail::sign_of(det), Stage::B};
 
-  // Stage C (Lemma 3): the first-order change of each complementary pair, in floating point.
+  // Stage C (Lemma 3): the first-order change of each complementary pair, in floating point,
+  // added to D (whose distance from X, Lemma 7, the bound adds).
   const double correction =
       pair_change(r0, r2, r1, r3) - (pair_change(r0, r1, r2, r3) + pair_change(r0, r3, r1, r2));
   det += correction;
   const double bound_c =
-      bounds::kInsphereC * permanent + bounds::kCorrectedRelative * std::fabs(det);
+      bounds::kInsphereCDoubleWord * permanent + bounds::kCorrectedRelative * std::fabs(det);
   if (det > bound_c || -det > bound_c) return {detail::sign_of(det), Stage::C};
 
   // Stage D: exact from the exact differences.

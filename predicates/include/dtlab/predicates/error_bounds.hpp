@@ -54,6 +54,18 @@ inline constexpr double kOrient3dC = (40.0 + 512.0 * kEpsilon) * kEpsilon * kEps
 inline constexpr double kInsphereC = (192.0 + 4096.0 * kEpsilon) * kEpsilon * kEpsilon;
 inline constexpr double kCorrectedRelative = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 
+// Stage B's fast path (Lemma 7): the double-word value D of the rounded determinant X satisfies
+// |D - X| <= 73 eps^2 * permanent (9 roundings of at most 8 eps^2 (1 + 4 eps) each, and stage A's
+// permanent low by at most (1 - eps)^16); 80 eps^2 is exact in binary. Stage B's own test is then
+// run against kInsphereB (1 + 2^-39), whose surplus over kInsphereB covers that error (the
+// static_assert) and the roundings of the test. Stage C starts from D instead of X, so its constant
+// grows by the same 80 eps^2.
+inline constexpr double kInsphereDoubleWord = 80.0 * kEpsilon * kEpsilon;
+inline constexpr double kInsphereBDoubleWord = kInsphereB * (1.0 + 0x1p-39);
+static_assert(kInsphereB * 0x1p-41 > kInsphereDoubleWord);
+inline constexpr double kInsphereCDoubleWord = (272.0 + 4096.0 * kEpsilon) * kEpsilon * kEpsilon;
+static_assert(kInsphereCDoubleWord >= kInsphereC + kInsphereDoubleWord);
+
 // Underflow (Lemma 4): a product whose exact value lies below 2^-1022 is off by up to 2^-1075
 // absolutely; additions and subtractions of doubles are exact there. The unit used is 2^-960,
 // far more than the 2^-1075 per unit of cofactor the lemma needs, because it must be a normal
