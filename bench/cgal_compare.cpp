@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -98,12 +99,18 @@ Sample run_cgal(const std::vector<Point3>& points, int threads) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+constexpr const char* kUsage =
+    "usage: cgal_compare INPUT [--seed S] [--repeat R] [--threads T] [--methods LIST] "
+    "[--no-dag]\n";
+
+int compare(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: cgal_compare INPUT [--seed S] [--repeat R] [--threads T] "
-                 "[--methods LIST] [--no-dag]\n");
+    std::fputs(kUsage, stderr);
     return 2;
+  }
+  if (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    std::fputs(kUsage, stdout);
+    return 0;
   }
   const std::string input = argv[1];
   std::uint64_t seed = 1;
@@ -224,4 +231,14 @@ int main(int argc, char** argv) {
   for (const Engine& e : engines) std::printf(" %.0f", e.samples.back().tetrahedra);
   std::printf("\n");
   return 0;
+}
+
+// Bad input (an unreadable file, a malformed number) ends with its message, not an abort.
+int main(int argc, char** argv) {
+  try {
+    return compare(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cgal_compare: %s\n", e.what());
+    return 2;
+  }
 }
