@@ -96,6 +96,46 @@ TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
   }
 }
 
+// The scan on several threads finds what it finds on one: the same broken mesh (same forced
+// flips), repaired with 1 and with 3 scan threads, gives the same counts, stars and tetrahedra.
+TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
+  const auto points = generators::generate("uniform", 6000, 8).points;
+  const auto limit = static_cast<VertexId>(points.size());
+  std::vector<std::vector<engine::Tetrahedron>> results;
+  std::vector<engine::SplayStats> all_stats;
+  for (const int threads : {1, 3}) {
+    engine::TriangulateOptions options;
+    engine::TriangulationStats build_stats;
+    engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt(points, options, build_stats);
+    std::vector<std::uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0U);
+    const auto first = *engine::find_simplex(points, order).simplex;
+    dt.start(first[0], first[1], first[2], first[3]);
+    for (const std::uint32_t v : order) {
+      if (std::find(first.begin(), first.end(), v) == first.end()) dt.insert(v);
+    }
+    std::mt19937_64 rng(11);
+    int made = 0;
+    for (int attempt = 0; made < 40 && attempt < 100000; ++attempt) {
+      const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
+      if (!dt.mesh().tets[t].alive.load()) continue;
+      made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
+    }
+    ASSERT_EQ(made, 40);
+    engine::SplayStats stats;
+    engine::splay_shared_mesh(dt.mesh(), {}, true, threads, stats);
+    EXPECT_EQ(stats.scan_threads, static_cast<std::uint64_t>(threads));
+    EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid()) << threads;
+    results.push_back(canonical(dt.finite_tetrahedra(limit)));
+    all_stats.push_back(stats);
+  }
+  EXPECT_GT(all_stats[0].non_delaunay_faces, 0U);
+  EXPECT_EQ(all_stats[0].non_delaunay_faces, all_stats[1].non_delaunay_faces);
+  EXPECT_EQ(all_stats[0].seeds, all_stats[1].seeds);
+  EXPECT_EQ(all_stats[0].stars, all_stats[1].stars);
+  EXPECT_EQ(results[0], results[1]);
+}
+
 // The local repair of the engine's mesh: forced flips break it; splaying from the broken faces
 // gives back the Delaunay mesh and touches only stars near them.
 TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
@@ -122,7 +162,7 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   ASSERT_EQ(made, 20);
   ASSERT_GT(engine::validate(points, dt.finite_tetrahedra(limit)).non_delaunay_faces, 0U);
   engine::SplayStats stats;
-  engine::splay_shared_mesh(dt.mesh(), {}, true, stats);
+  engine::splay_shared_mesh(dt.mesh(), {}, true, 1, stats);
   EXPECT_GT(stats.non_delaunay_faces, 0U);
   EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
   EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid());
@@ -131,7 +171,7 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   EXPECT_GT(stats.tetrahedra_created, 0U);
   // A Delaunay mesh is left alone: nothing found, nothing splayed.
   engine::SplayStats again;
-  engine::splay_shared_mesh(dt.mesh(), {}, true, again);
+  engine::splay_shared_mesh(dt.mesh(), {}, true, 2, again);
   EXPECT_EQ(again.non_delaunay_faces, 0U);
   EXPECT_EQ(again.stars, 0U);
   EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);

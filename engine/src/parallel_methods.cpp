@@ -215,7 +215,8 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   const double check_before = check.seconds_check;
   if (options.repair == Repair::Splay) {
     // Star splaying from the marks and every non-Delaunay face: always ends Delaunay.
-    splay_shared_mesh(mesh, marks, options.kernel != KernelKind::Fast, stats.splay);
+    splay_shared_mesh(mesh, marks, options.kernel != KernelKind::Fast, options.threads,
+                      stats.splay);
     tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
     count(tets);
     check.seconds_repair = stats.splay.seconds;
@@ -549,7 +550,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
                          options, stats);
   }
   if (options.repair == Repair::Splay)
-    splay_shared_mesh(mesh, {}, options.kernel != KernelKind::Fast, stats.splay);
+    splay_shared_mesh(mesh, {}, options.kernel != KernelKind::Fast, options.threads, stats.splay);
   return mesh.take_finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
 }
 

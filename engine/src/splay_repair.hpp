@@ -15,9 +15,10 @@ namespace dtlab::engine {
 // inverted finite tetrahedron, from every point that should be a vertex and is none (an abandoned
 // insertion), and around a second vertex of one point; the rest of the mesh is kept.
 // `exact_mesh`: the mesh was built with exact predicates (each face is then scanned from one side
-// only). `stats` gets the counts and the time.
+// only). The store pass and the exact scan run on `threads` threads (the run's own); the
+// splaying and the write-back on the caller's. `stats` gets the counts and the times.
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
-                       SplayStats& stats);
+                       int threads, SplayStats& stats);
 
 // The Delaunay tetrahedralization of `points` from any list of tetrahedra on them (ids checked by
 // the caller): every distinct point gets a star, from its neighbours in `tets` (near points for a

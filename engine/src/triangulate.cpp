@@ -90,7 +90,7 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   stats.location_steps = dt.location_steps();
   stats.walk_fallbacks = dt.walk_fallbacks();
   if (options.repair == Repair::Splay)
-    splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, stats.splay);
+    splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, 1, stats.splay);
   return dt.take_finite_tetrahedra(static_cast<VertexId>(input_count));
 }
 
@@ -487,7 +487,9 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"regrown", r.regrown},
                   {"tetrahedra_removed", r.tetrahedra_removed},
                   {"tetrahedra_created", r.tetrahedra_created},
-                  {"seconds", r.seconds}};
+                  {"seconds", r.seconds},
+                  {"seconds_scan", r.seconds_scan},
+                  {"scan_threads", r.scan_threads}};
   }
   j["repair"] = to_string(options.repair);
   j["method"] = method;

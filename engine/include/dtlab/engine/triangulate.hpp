@@ -132,7 +132,9 @@ struct SplayStats {
   std::uint64_t regrown = 0;  // rounds that splayed more vertices where a broken mesh did not fit
   std::uint64_t tetrahedra_removed = 0;
   std::uint64_t tetrahedra_created = 0;
-  double seconds = 0.0;  // scan, splaying and writing back (included in seconds.total)
+  double seconds = 0.0;            // scan, splaying and writing back (included in seconds.total)
+  double seconds_scan = 0.0;       // of which the store pass and the exact scan
+  std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };
 
 struct TriangulationStats {
