@@ -335,7 +335,7 @@ struct LockFixture {
     for (int i = 0; i < tets; ++i) ids.push_back(mesh.tets.allocate());
   }
   void own(TetId t, std::uint32_t thread) {
-    mesh.tets[t].lock_owner.store(thread, std::memory_order_release);
+    mesh.tets.lock_word(t).store(thread, std::memory_order_release);
   }
   // "thread waits for t, owned by owner", registered as OptimisticSync registers it.
   void wait(std::uint32_t thread, TetId t, std::uint32_t owner) {
@@ -409,7 +409,7 @@ TEST(ParallelMethods, DetectGivesUpOnRealDeadlocksOnly) {
     EXPECT_EQ(stats.stale_cycles, 0u);
     EXPECT_EQ(f.table.waiting_for[1].load(), 0u);  // withdrawn, so that 2 does not give up too
     sync.rollback();
-    EXPECT_EQ(f.mesh.tets[a].lock_owner.load(), 0u);
+    EXPECT_EQ(f.mesh.tets.lock_word(a).load(), 0u);
   }
   {
     // Thread 2 registered its wait for a while thread 1 held it; 1 has let a go since, and 2 has

@@ -118,7 +118,7 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
     int made = 0;
     for (int attempt = 0; made < 40 && attempt < 100000; ++attempt) {
       const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
-      if (!dt.mesh().tets[t].alive.load()) continue;
+      if (!dt.mesh().tets.alive(t).load()) continue;
       made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
     }
     ASSERT_EQ(made, 40);
@@ -156,7 +156,7 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   int made = 0;
   for (int attempt = 0; made < 20 && attempt < 100000; ++attempt) {
     const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
-    if (!dt.mesh().tets[t].alive.load()) continue;
+    if (!dt.mesh().tets.alive(t).load()) continue;
     made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
   }
   ASSERT_EQ(made, 20);

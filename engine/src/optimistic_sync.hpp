@@ -100,7 +100,7 @@ inline Cycle find_cycle(const SharedMesh& mesh, const LockTable& table, std::uin
     const TetId t = table.waiting_on[chain[i]];
     // acquire: synchronizes with the owner's compare-and-swap (release), so that a withdrawal
     // sequenced before it is seen by the loads C below. (A and C need no order of their own.)
-    if (t == kNoTet || mesh.tets[t].lock_owner.load(std::memory_order_acquire) != successor(i)) {
+    if (t == kNoTet || mesh.tets.lock_word(t).load(std::memory_order_acquire) != successor(i)) {
       return Cycle::Stale;
     }
   }
@@ -130,7 +130,7 @@ class OptimisticSync {
   // Takes t's lock; false when the insertion must be given up (or, burglary, this thread was
   // burgled: see resume()).
   bool acquire(TetId t) {
-    std::atomic<std::uint32_t>& word = mesh_.tets[t].lock_owner;
+    std::atomic<std::uint32_t>& word = mesh_.tets.lock_word(t);
     // Only this thread ever stores self_, so a relaxed load that sees it is exact.
     if (word.load(std::memory_order_relaxed) == self_) return true;
     bool waited = false;
@@ -202,7 +202,7 @@ class OptimisticSync {
     // Logged once; created tetrahedra are in the set from birth (retired whole on rollback).
     if (!logged_or_created_.insert(t)) return;
     const Tet& tet = mesh_.tets[t];
-    Saved s{t, tet.neighbor, {}, tet.alive.load(std::memory_order_relaxed)};
+    Saved s{t, tet.neighbor, {}, mesh_.tets.alive(t).load(std::memory_order_relaxed)};
     if (mesh_.tets.has_children()) {
       const auto& children = mesh_.tets.children(t);
       for (std::size_t i = 0; i < 4; ++i) s.child[i] = children[i].load(std::memory_order_relaxed);
@@ -212,7 +212,7 @@ class OptimisticSync {
 
   void created(TetId t) {
     // Owned before it is published: nobody can lock it before this thread lets go.
-    mesh_.tets[t].lock_owner.store(self_, std::memory_order_relaxed);
+    mesh_.tets.lock_word(t).store(self_, std::memory_order_relaxed);
     held_.push_back(t);
     created_.push_back(t);
     if (mode_ != Mode::Burglary) logged_or_created_.insert(t);
@@ -253,14 +253,13 @@ class OptimisticSync {
         if (mesh_.tets.has_children()) {
           mesh_.tets.children(it->tet)[i].store(it->child[i], std::memory_order_relaxed);
         }
-      tet.alive.store(it->alive, std::memory_order_release);
+      mesh_.tets.alive(it->tet).store(it->alive, std::memory_order_release);
     }
     for (const TetId t : created_) {
-      Tet& tet = mesh_.tets[t];
       if (mesh_.tets.has_children()) {
         for (auto& c : mesh_.tets.children(t)) c.store(kNoTet, std::memory_order_relaxed);
       }
-      tet.alive.store(false, std::memory_order_release);
+      mesh_.tets.alive(t).store(false, std::memory_order_release);
     }
     log_.clear();
     created_.clear();
@@ -293,7 +292,7 @@ class OptimisticSync {
       }
       if (refused) continue;  // burgled again (or a deadlock broken by someone else): repeat
       for (const TetId c : mine) {
-        if (!mesh_.tets[c].alive.load(std::memory_order_acquire)) {
+        if (!mesh_.tets.alive(c).load(std::memory_order_acquire)) {
           ++stats_.potential_problems;
           return Resume::Stop;
         }
@@ -400,8 +399,8 @@ class OptimisticSync {
       // release: this thread's writes are visible to the next owner. A compare-and-swap, because
       // a burglar may have taken the lock meanwhile (then it is the burglar's to release).
       std::uint32_t expected = self_;
-      mesh_.tets[t].lock_owner.compare_exchange_strong(expected, 0, std::memory_order_release,
-                                                       std::memory_order_relaxed);
+      mesh_.tets.lock_word(t).compare_exchange_strong(expected, 0, std::memory_order_release,
+                                                      std::memory_order_relaxed);
     }
     held_.clear();
   }

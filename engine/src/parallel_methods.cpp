@@ -231,7 +231,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   std::vector<TetId> live_marks;
   if (options.location == Location::Walk) {
     for (const TetId t : marks) {
-      if (mesh.tets[t].alive.load(std::memory_order_relaxed)) live_marks.push_back(t);
+      if (mesh.tets.alive(t).load(std::memory_order_relaxed)) live_marks.push_back(t);
     }
   }
   check.repair_flips =
@@ -290,6 +290,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   SharedMesh mesh(points);
   if (options.max_tetrahedra > 0) mesh.tets.set_capacity(options.max_tetrahedra);
   mesh.tets.keep_children(options.location != Location::Walk);  // the walk mode keeps no DAG
+  mesh.tets.keep_lock_words(true);
   TriangulationStats start_stats;
   NoSync no_sync;
   IncrementalDelaunay<K, NoSync>(mesh, options, start_stats, no_sync)

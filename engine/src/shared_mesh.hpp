@@ -52,8 +52,9 @@ struct SharedMesh {
         representative[vertex] = std::min(representative[vertex], duplicate);
       }
     }
-    auto kept = [&](const Tet& t) {
-      return t.alive.load(std::memory_order_acquire) && !t.is_infinite() &&
+    auto kept = [&](TetId id) {
+      const Tet& t = tets[id];
+      return tets.alive(id).load(std::memory_order_acquire) && !t.is_infinite() &&
              t.vertex[0] < vertex_limit && t.vertex[1] < vertex_limit &&
              t.vertex[2] < vertex_limit && t.vertex[3] < vertex_limit;
     };
@@ -61,12 +62,12 @@ struct SharedMesh {
     std::vector<Tetrahedron> out;
     if (release) {  // exactly the size needed: no growth while blocks are let go
       std::size_t count = 0;
-      for (std::size_t i = 0; i < n; ++i) count += kept(tets[static_cast<TetId>(i)]) ? 1 : 0;
+      for (std::size_t i = 0; i < n; ++i) count += kept(static_cast<TetId>(i)) ? 1 : 0;
       out.reserve(count);
     }
     for (std::size_t i = 0; i < n; ++i) {
       const Tet& t = tets[static_cast<TetId>(i)];
-      if (kept(t)) {
+      if (kept(static_cast<TetId>(i))) {
         out.push_back(t.vertex);
         if (!representative.empty()) {
           for (auto& v : out.back()) v = representative[v];

@@ -231,9 +231,8 @@ class TetReplacement {
     }
     // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
     for (const TetId o : scratch_old_) {
-      Tet& old = mesh_.tets[o];
       if (recycle_) {
-        old.alive.store(false, std::memory_order_release);
+        mesh_.tets.alive(o).store(false, std::memory_order_release);
         slots_.retire(o);
         sync_.killed(o);
         continue;
@@ -243,12 +242,12 @@ class TetReplacement {
         for (std::size_t j = 0; j < count; ++j)
           children[j].store(ids[j], std::memory_order_release);
       }
-      old.alive.store(false, std::memory_order_release);
+      mesh_.tets.alive(o).store(false, std::memory_order_release);
       sync_.killed(o);
     }
     scratch_created_.assign(ids.begin(), ids.begin() + n);
     for (std::size_t j = 0; j < count; ++j) {
-      mesh_.tets[ids[j]].alive.store(true, std::memory_order_release);
+      mesh_.tets.alive(ids[j]).store(true, std::memory_order_release);
     }
     return Replaced::Done;
   }
@@ -299,9 +298,8 @@ class TetReplacement {
     // History: children first (release), then the old tetrahedra die, then the new ones live.
     // A recycling engine keeps no history: the old slots are reused after this insertion.
     for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
-      Tet& old = mesh_.tets[scratch_old_[r]];
       if (recycle_) {
-        old.alive.store(false, std::memory_order_release);
+        mesh_.tets.alive(scratch_old_[r]).store(false, std::memory_order_release);
         slots_.retire(scratch_old_[r]);
         sync_.killed(scratch_old_[r]);
         continue;
@@ -313,11 +311,11 @@ class TetReplacement {
               scratch_created_[j], std::memory_order_release);
         }
       }
-      old.alive.store(false, std::memory_order_release);
+      mesh_.tets.alive(scratch_old_[r]).store(false, std::memory_order_release);
       sync_.killed(scratch_old_[r]);
     }
     for (const TetId id : scratch_created_)
-      mesh_.tets[id].alive.store(true, std::memory_order_release);
+      mesh_.tets.alive(id).store(true, std::memory_order_release);
     return Replaced::Done;
   }
 

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cassert>
 #include <cstdint>
 #include <memory>
 #include <new>
@@ -46,14 +47,12 @@ inline int ref_face(FaceRef r) {
   return static_cast<int>(r & 3u);
 }
 
+// The hot record: 32 bytes, two to a cache line. Whether it is alive, its lock word and its DAG
+// children are kept beside it by the store (TetStore::alive, lock_word, children), each only
+// where the mode needs it.
 struct Tet {
   std::array<VertexId, 4> vertex{};
   std::array<FaceRef, 4> neighbor{};
-  // Owner of the lock (thread id + 1), 0 when free: used by the parallel lock methods.
-  std::atomic<std::uint32_t> lock_owner{0};
-  // Dead tetrahedra are DAG history (or, in walk mode, free slots); release on death, acquire on
-  // reading. The DAG children live beside the records (TetStore::children).
-  std::atomic<bool> alive{false};
 
   [[nodiscard]] bool is_infinite() const {
     return vertex[0] == kInfiniteVertex || vertex[1] == kInfiniteVertex ||
@@ -66,6 +65,8 @@ struct Tet {
     return -1;
   }
 };
+
+static_assert(sizeof(Tet) == 32);
 
 // The store ran out of slots: the run cannot go on (triangulate reports it as an error).
 class StoreFull : public std::length_error {
@@ -95,19 +96,45 @@ class TetStore {
       free_block(blocks_[i].load(std::memory_order_relaxed));
   }
 
+  // A slot is the record, then its lock word (parallel lock methods only), then its DAG children
+  // (DAG mode only): 32 bytes for a sequential walk, 36 for a parallel one, 48 and 52 with the DAG.
+  // Both in the slot so that locking or descending reads the record's own cache line.
+  //
   // DAG children: the tetrahedra that replaced a dead one (kNoTet when unused). Written before
-  // the tetrahedron is marked dead; published with release, read with acquire. They follow
-  // their record in the same slot (one cache line for the descent to read), and exist only when
-  // the store keeps the DAG: a walk-mode slot is 40 bytes, a DAG-mode slot 56.
+  // the tetrahedron is marked dead; published with release, read with acquire.
   using Children = std::array<std::atomic<TetId>, 4>;
   // Before the first allocation.
   void keep_children(bool keep) {
     children_ = keep;
-    stride_ = sizeof(Tet) + (keep ? sizeof(Children) : 0);
+    set_stride();
   }
   [[nodiscard]] bool has_children() const { return children_; }
   Children& children(TetId t) {
-    return *std::launder(reinterpret_cast<Children*>(slot(t) + sizeof(Tet)));
+    return *std::launder(reinterpret_cast<Children*>(slot(t) + children_offset()));
+  }
+  // Lock words, one per slot, only for the parallel lock methods (4 bytes a slot that a
+  // sequential run does not pay). Before the first allocation.
+  void keep_lock_words(bool keep) {
+    lock_words_ = keep;
+    set_stride();
+  }
+  [[nodiscard]] bool has_lock_words() const { return lock_words_; }
+
+  // Whether slot t holds a live tetrahedron. Dead tetrahedra are DAG history (or, in walk mode,
+  // free slots); release on death and birth, acquire on reading. One byte per slot, in an array
+  // after the block's slots (a byte in the slot would cost the alignment of the next record).
+  std::atomic<bool>& alive(TetId t) {
+    return *std::launder(reinterpret_cast<std::atomic<bool>*>(block_of(t) + alive_offset() +
+                                                              (t & (kBlockSize - 1))));
+  }
+  const std::atomic<bool>& alive(TetId t) const {
+    return *std::launder(reinterpret_cast<const std::atomic<bool>*>(block_of(t) + alive_offset() +
+                                                                    (t & (kBlockSize - 1))));
+  }
+  // Owner of t's lock (thread id + 1), 0 when free. Only where has_lock_words().
+  std::atomic<std::uint32_t>& lock_word(TetId t) {
+    assert(lock_words_);
+    return *std::launder(reinterpret_cast<std::atomic<std::uint32_t>*>(slot(t) + sizeof(Tet)));
   }
 
   Tet& operator[](TetId t) { return *std::launder(reinterpret_cast<Tet*>(slot(t))); }
@@ -173,15 +200,22 @@ class TetStore {
     }
   }
 
-  // Blocks are mapped from the system directly (2.5 MiB, 3.5 with children), not from the heap: a
+  // Blocks are mapped from the system directly (2.1 MiB for a sequential walk, 3.3 with DAG
+  // children and lock words), not from the heap: a
   // released block goes back to the system at once, which is what lets take_finite_tetrahedra
   // build the output in the memory the store gives up. (malloc would serve them from its heap
   // once a larger block had been freed, and keep them there.)
-  [[nodiscard]] char* slot(TetId t) const {
-    return blocks_[t >> kBlockBits].load(std::memory_order_acquire) +
-           (t & (kBlockSize - 1)) * stride_;
+  // A block: kBlockSize slots (stride_ bytes each), then their alive flags (1 byte each).
+  [[nodiscard]] char* block_of(TetId t) const {
+    return blocks_[t >> kBlockBits].load(std::memory_order_acquire);
   }
-  [[nodiscard]] std::size_t block_bytes() const { return kBlockSize * stride_; }
+  [[nodiscard]] char* slot(TetId t) const { return block_of(t) + (t & (kBlockSize - 1)) * stride_; }
+  [[nodiscard]] std::size_t alive_offset() const { return kBlockSize * stride_; }
+  [[nodiscard]] std::size_t block_bytes() const { return alive_offset() + kBlockSize; }
+  [[nodiscard]] std::size_t children_offset() const {
+    return sizeof(Tet) + (lock_words_ ? sizeof(std::uint32_t) : 0);
+  }
+  void set_stride() { stride_ = children_offset() + (children_ ? sizeof(Children) : 0); }
   char* new_block() const {
     void* memory =
         mmap(nullptr, block_bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -189,20 +223,25 @@ class TetStore {
     char* block = static_cast<char*>(memory);
     for (std::size_t i = 0; i < kBlockSize; ++i) {
       new (block + i * stride_) Tet();
-      if (children_) new (block + i * stride_ + sizeof(Tet)) Children{};
+      if (lock_words_) new (block + i * stride_ + sizeof(Tet)) std::atomic<std::uint32_t>(0);
+      if (children_) new (block + i * stride_ + children_offset()) Children{};
+      new (block + alive_offset() + i) std::atomic<bool>(false);
     }
     return block;
   }
   void free_block(char* block) const {
     static_assert(std::is_trivially_destructible_v<Tet> &&
-                  std::is_trivially_destructible_v<Children>);
+                  std::is_trivially_destructible_v<Children> &&
+                  std::is_trivially_destructible_v<std::atomic<bool>> &&
+                  std::is_trivially_destructible_v<std::atomic<std::uint32_t>>);
     if (block != nullptr) munmap(block, block_bytes());
   }
 
   std::unique_ptr<std::atomic<char*>[]> blocks_;
   std::atomic<std::size_t> size_{0};
   bool children_ = true;
-  std::size_t stride_ = sizeof(Tet) + sizeof(Children);  // bytes per slot
+  bool lock_words_ = true;
+  std::size_t stride_ = sizeof(Tet) + sizeof(std::uint32_t) + sizeof(Children);  // per slot
   std::size_t capacity_ = kMaxTets;
 };
 
