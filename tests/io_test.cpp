@@ -170,6 +170,15 @@ TEST_F(IoTest, BadInputGetsClearErrors) {
   expect_error(write("n.ply", ply_header("ascii", 1, "double") + "3 0 1 2\nnan 1 1 1\n"),
                "non-finite");
   expect_error(write("a.off", "OFF\n5 0 0\n0 0 0\n"), "truncated");
+  // An element whose rows hold nothing, with a count no file could hold: skipped, not spun over.
+  const std::string empty_rows =
+      "ply\nformat ascii 1.0\nelement nothing 392222222222\nelement vertex 1\n"
+      "property double x\nproperty double y\nproperty double z\nend_header\n1 2 3\n";
+  const auto one = io::read_points(write("empty_rows.ply", empty_rows));
+  ASSERT_EQ(one.size(), 1U);
+  EXPECT_EQ(one[0].z, 3.0);
+  expect_error(write("empty_rows_short.ply", empty_rows.substr(0, empty_rows.size() - 6)),
+               "truncated");
   expect_error(write("b.node", "3 3 0 0\n0 0 0 0\n2 1 1 1\n"), "out of sequence");
   expect_error(write("c.node", "2 2 0 0\n"), "dimension must be 3");
   expect_error(write("x.obj", "v 1 2 3\n"), "unknown point format");

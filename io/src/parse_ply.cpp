@@ -229,6 +229,9 @@ std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
   auto read_elements = [&](auto&& read_scalar) {
     for (std::size_t e = 0; e <= vertex_index; ++e) {
       const Element& el = elements[e];
+      // Rows without properties hold no data: skipped, or a count of 10^11 would spin (a hang
+      // found by fuzz_parsers).
+      if (el.properties.empty()) continue;
       for (std::int64_t r = 0; r < el.count; ++r) {
         const std::string where = "element " + el.name + " #" + std::to_string(r);
         double xyz[3] = {0, 0, 0};

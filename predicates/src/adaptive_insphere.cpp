@@ -55,20 +55,6 @@ Fixed<384> complementary_pair(const std::array<Row, 4>& r, const std::array<Fixe
   return m_ij * n_kl + m_kl * n_ij;
 }
 
-// Stage B without tails: X is the exact determinant. Its sign from the double word D when D is
-// clear of 0, or 0 from the grid certificate, else (kUndecided) from the expansion (Lemma 7).
-int exact_rows_sign_double_word(const std::array<detail::RoundedRow, 4>& rounded, double value,
-                                double permanent) {
-  const double size = std::fabs(value);
-  const double error = bounds::kInsphereDoubleWord * permanent;
-  if (size > 2.0 * error) return detail::sign_of(value);
-  // X is a multiple of 2^(5 g); |X| <= |value| (1 + eps) + error < 2 |value| + 2 error.
-  const int g = detail::common_power_of_two(rounded);
-  if (g == detail::kAllZero) return 0;
-  if (2.0 * size + 2.0 * error < std::ldexp(1.0, 5 * g)) return 0;
-  return detail::kUndecided;
-}
-
 // First-order changes caused by the tails, with the float values of the rounded rows.
 double xy_change(const Row& p, const Row& q) {
   return (p.tx * q.y + p.x * q.ty) - (q.tx * p.y + q.x * p.ty);
@@ -92,7 +78,8 @@ double pair_change(const Row& ri, const Row& rj, const Row& rk, const Row& rl) {
 }  // namespace
 
 StagedSign AdaptiveKernel::insphere_beyond_a(const Point3& a, const Point3& b, const Point3& c,
-                                             const Point3& d, const Point3& e, double permanent) {
+                                             const Point3& d, const Point3& e,
+                                             const detail::FilteredValue& stage_a) {
   if (!in_expansion_range(a, b, c, d, e)) {
     return {ExactKernel::insphere(a, b, c, d, e), Stage::Gmp};
   }
@@ -102,15 +89,23 @@ StagedSign AdaptiveKernel::insphere_beyond_a(const Point3& a, const Point3& b, c
   const Row& r2 = rows[2];
   const Row& r3 = rows[3];
   const bool tails = has_tail(r0) || has_tail(r1) || has_tail(r2) || has_tail(r3);
+  const double permanent = stage_a.permanent;
+  const std::array<detail::RoundedRow, 4> rounded{
+      {{r0.x, r0.y, r0.z}, {r1.x, r1.y, r1.z}, {r2.x, r2.y, r2.z}, {r3.x, r3.y, r3.z}}};
+
+  // Stage B on exact rows, the grid certificate from stage A's value (Lemma 8): the ties of a
+  // lattice (cospherical grid points) are proven 0 before any double word.
+  if (!tails && detail::stage_a_proves_zero(stage_a.det, stage_a.bound,
+                                            detail::common_power_of_two(rounded), 5)) {
+    return {0, Stage::B};
+  }
 
   // Stage B (Lemmas 2 and 7): -det4 of the rounded rows, X, in double words (D); exactly, as an
   // expansion in the grouping of stage A, only where the rows are exact and D cannot settle it.
-  const std::array<detail::RoundedRow, 4> rounded{
-      {{r0.x, r0.y, r0.z}, {r1.x, r1.y, r1.z}, {r2.x, r2.y, r2.z}, {r3.x, r3.y, r3.z}}};
   double det = detail::insphere_rounded_double_word(rounded).hi;
   if (!tails) {
-    const int sign = exact_rows_sign_double_word(rounded, det, permanent);
-    if (sign != detail::kUndecided) return {sign, Stage::B};
+    const int sign = detail::insphere_exact_rows_sign(rounded, det, permanent);
+    if (sign != detail::kRowsUndecided) return {sign, Stage::B};
     const std::array<Fixed<6>, 4> lift{exact_lift(r0), exact_lift(r1), exact_lift(r2),
                                        exact_lift(r3)};
     const Fixed<1152> on_rounded =

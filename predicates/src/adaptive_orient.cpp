@@ -1,8 +1,10 @@
 // Adaptive orient3d (stages B, C, D), the centroid test and orient2d, for dtlab's decomposition
 // about d along the x column: with rows u = a - d, v = b - d, w = c - d and (r, s, t) running
 // cyclically over (u, v, w), orient3d = sum r_x (s_z t_y - s_y t_z) (docs/predicates.md).
+#include <array>
 #include <cmath>
 
+#include "dtlab/predicates/detail/grid_certificate.hpp"
 #include "dtlab/predicates/error_bounds.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "dtlab/predicates/valid_range.hpp"
@@ -42,11 +44,26 @@ Fixed<4> exact_minor(double p, double q_prime, double p_prime, double q) {
 }  // namespace
 
 StagedSign AdaptiveKernel::orient3d_beyond_a(const Point3& a, const Point3& b, const Point3& c,
-                                             const Point3& d, double permanent) {
+                                             const Point3& d,
+                                             const detail::FilteredValue& stage_a) {
   if (!in_expansion_range(a, b, c, d)) return {ExactKernel::orient3d(a, b, c, d), Stage::Gmp};
+  const double permanent = stage_a.permanent;
   const RoundedVector u = rounded_vector(a, d);
   const RoundedVector v = rounded_vector(b, d);
   const RoundedVector w = rounded_vector(c, d);
+  const bool tails = has_tail(u) || has_tail(v) || has_tail(w);
+
+  // Stage B on exact differences, the grid certificate (Lemma 8): a tie on a grid (coplanar
+  // points of a lattice) is proven 0 from stage A's value, without the expansion.
+  if (!tails) {
+    const std::array<detail::RoundedRow, 3> rows{{{u.x.value, u.y.value, u.z.value},
+                                                  {v.x.value, v.y.value, v.z.value},
+                                                  {w.x.value, w.y.value, w.z.value}}};
+    if (detail::stage_a_proves_zero(stage_a.det, stage_a.bound, detail::common_power_of_two(rows),
+                                    3)) {
+      return {0, Stage::B};
+    }
+  }
 
   // Stage B: the determinant of the rounded differences, exactly (Lemma 2).
   const Fixed<24> on_rounded =
@@ -56,9 +73,7 @@ StagedSign AdaptiveKernel::orient3d_beyond_a(const Point3& a, const Point3& b, c
   double det = on_rounded.approximate();
   const double bound_b = bounds::kOrient3dB * permanent;
   if (det > bound_b || -det > bound_b) return {detail::sign_of(det), Stage::B};
-  if (!has_tail(u) && !has_tail(v) && !has_tail(w)) {
-    return {on_rounded.sign(), Stage::B};  // the differences were exact: so is the value
-  }
+  if (!tails) return {on_rounded.sign(), Stage::B};  // exact differences: so is the value
 
   // Stage C (Lemma 3): add the terms of first order in the tails: for each cyclic (r, s, t),
   //   tail(r_x) m_st + r_x (tail(s_z) t_y + s_z tail(t_y) - tail(s_y) t_z - s_y tail(t_z)),

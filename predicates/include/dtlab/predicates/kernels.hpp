@@ -106,19 +106,20 @@ struct AdaptiveKernel : SignsFromStages<AdaptiveKernel> {
                                     const Point3& d) {
     const detail::FilteredValue f = detail::orient3d_float(a, b, c, d);
     if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
-    return orient3d_beyond_a(a, b, c, d, f.permanent);
+    return orient3d_beyond_a(a, b, c, d, f);
   }
   static StagedSign insphere_staged(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, const Point3& e) {
     const detail::FilteredValue f = detail::insphere_float(a, b, c, d, e);
     if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
-    return insphere_beyond_a(a, b, c, d, e, f.permanent);
+    return insphere_beyond_a(a, b, c, d, e, f);
   }
-  // Stages B, C, D (or Gmp); `permanent` from stage A.
+  // Stages B, C, D (or Gmp), from stage A's value, bound and permanent.
   static StagedSign orient3d_beyond_a(const Point3& a, const Point3& b, const Point3& c,
-                                      const Point3& d, double permanent);
+                                      const Point3& d, const detail::FilteredValue& stage_a);
   static StagedSign insphere_beyond_a(const Point3& a, const Point3& b, const Point3& c,
-                                      const Point3& d, const Point3& e, double permanent);
+                                      const Point3& d, const Point3& e,
+                                      const detail::FilteredValue& stage_a);
   static StagedSign orient2d_staged(const Point3& a, const Point3& b, const Point3& c, int drop);
   static StagedSign incircle_lifted_staged(const Point3& a, const Point3& b, const Point3& c,
                                            const Point3& d, int drop);

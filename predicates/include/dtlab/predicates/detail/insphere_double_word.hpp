@@ -6,16 +6,14 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
+#include "dtlab/predicates/detail/grid_certificate.hpp"
 #include "dtlab/predicates/double_word.hpp"
+#include "dtlab/predicates/error_bounds.hpp"
 
 namespace dtlab::predicates::detail {
-
-// One rounded row p - e (its squared length is formed here).
-struct RoundedRow {
-  double x, y, z;
-};
 
 // dtlab's insphere sign of the four rows, as a double word:
 //   (m02 n13 + m13 n02) - ((m01 n23 + m23 n01) + (m03 n12 + m12 n03)),
@@ -39,27 +37,23 @@ inline double_word::DoubleWord insphere_rounded_double_word(const std::array<Rou
   return pair(0, 2, 1, 3) - (pair(0, 1, 2, 3) + pair(0, 3, 1, 2));
 }
 
-// The exponent of the lowest set bit of a finite nonzero double: x is a multiple of 2^result.
-inline int lowest_bit_exponent(double x) {
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const auto biased = static_cast<int>((bits >> 52) & 0x7ffU);
-  std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
-  if (biased != 0) significand |= std::uint64_t{1} << 52;  // the hidden bit of a normal number
-  return std::max(biased, 1) - 1075 + std::countr_zero(significand);
-}
+// What insphere_exact_rows_sign returns when it cannot decide (the caller forms the expansion).
+inline constexpr int kRowsUndecided = 2;
 
-// The largest g such that every coordinate of every row is a multiple of 2^g (the determinant,
-// an integer polynomial of degree 5 in them, is then a multiple of 2^(5 g)); `kAllZero` when
-// every coordinate is 0.
-inline constexpr int kAllZero = 1 << 20;
-inline int common_power_of_two(const std::array<RoundedRow, 4>& r) {
-  int g = kAllZero;
-  for (const RoundedRow& row : r) {
-    for (const double c : {row.x, row.y, row.z}) {
-      if (c != 0.0) g = std::min(g, lowest_bit_exponent(c));
-    }
-  }
-  return g;
+// Stage B on exact rows (no tails: X, the determinant of the rows, is the true one), from
+// `value`, the leading word of insphere_rounded_double_word(rows), and stage A's permanent: X's
+// sign when the double word is clear of 0; 0 when the grid certificate proves X = 0 (X is a
+// multiple of 2^(5 g), and |X| <= |value| (1 + eps) + error < 2 |value| + 2 error < 2^(5 g));
+// else kRowsUndecided.
+inline int insphere_exact_rows_sign(const std::array<RoundedRow, 4>& rows, double value,
+                                    double permanent) {
+  const double size = std::fabs(value);
+  const double error = bounds::kInsphereDoubleWord * permanent;
+  if (size > 2.0 * error) return (value > 0.0) - (value < 0.0);
+  const int g = common_power_of_two(rows);
+  if (g == kAllZero) return 0;
+  if (2.0 * size + 2.0 * error < std::ldexp(1.0, 5 * g)) return 0;
+  return kRowsUndecided;
 }
 
 }  // namespace dtlab::predicates::detail

@@ -1,0 +1,51 @@
+#pragma once
+// The grid certificate of stage B (docs/predicates.md, Lemmas 7 and 8): when every coordinate
+// difference of a call is exact and a multiple of 2^g, its determinant, an integer polynomial of
+// degree k in them, is a multiple of 2^(k g); an approximation closer to 0 than half of that,
+// with a proven error, proves the determinant 0.
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace dtlab::predicates::detail {
+
+// One row of coordinate differences p - e.
+struct RoundedRow {
+  double x, y, z;
+};
+
+// The exponent of the lowest set bit of a finite nonzero double: x is a multiple of 2^result.
+inline int lowest_bit_exponent(double x) {
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const auto biased = static_cast<int>((bits >> 52) & 0x7ffU);
+  std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
+  if (biased != 0) significand |= std::uint64_t{1} << 52;  // the hidden bit of a normal number
+  return std::max(biased, 1) - 1075 + std::countr_zero(significand);
+}
+
+// The largest g such that every coordinate of every row is a multiple of 2^g (a determinant that
+// is an integer polynomial of degree k in them is then a multiple of 2^(k g)); `kAllZero` when
+// every coordinate is 0.
+inline constexpr int kAllZero = 1 << 20;
+template <std::size_t N>
+int common_power_of_two(const std::array<RoundedRow, N>& r) {
+  int g = kAllZero;
+  for (const RoundedRow& row : r) {
+    for (const double c : {row.x, row.y, row.z}) {
+      if (c != 0.0) g = std::min(g, lowest_bit_exponent(c));
+    }
+  }
+  return g;
+}
+
+// Stage A's value proves an exact determinant of degree `degree` on the grid 2^g to be 0 (Lemma
+// 8): |exact| <= |det| / (1 - eps) + bound (Lemma 1's proof, with Lemma 4's underflow term in
+// `bound`) < 2 (|det| + bound) < 2^(degree g).
+inline bool stage_a_proves_zero(double det, double bound, int g, int degree) {
+  if (g == kAllZero) return true;
+  return 2.0 * (std::fabs(det) + bound) < std::ldexp(1.0, degree * g);
+}
+
+}  // namespace dtlab::predicates::detail
