@@ -96,6 +96,35 @@ TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
   }
 }
 
+// The Delaunay mesh of `points` in the sequential engine (DAG mode, input order), and forced
+// flips that break it: the broken meshes the local repair starts from.
+struct BrokenMesh {
+  engine::TriangulateOptions options;
+  engine::TriangulationStats stats;
+  engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt;
+
+  explicit BrokenMesh(const std::vector<Point3>& points) : dt(points, options, stats) {
+    std::vector<std::uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0U);
+    const auto first = *engine::find_simplex(points, order).simplex;
+    dt.start(first[0], first[1], first[2], first[3]);
+    for (const std::uint32_t v : order) {
+      if (std::find(first.begin(), first.end(), v) == first.end()) dt.insert(v);
+    }
+  }
+  // Flips `wanted` random faces (seeded), whatever the Delaunay test says; returns how many.
+  int force_flips(int wanted, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    int made = 0;
+    for (int attempt = 0; made < wanted && attempt < 100000; ++attempt) {
+      const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
+      if (!dt.mesh().tets.alive(t).load()) continue;
+      made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
+    }
+    return made;
+  }
+};
+
 // The scan on several threads finds what it finds on one: the same broken mesh (same forced
 // flips), repaired with 1 and with 3 scan threads, gives the same counts, stars and tetrahedra.
 TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
@@ -104,24 +133,9 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
   std::vector<std::vector<engine::Tetrahedron>> results;
   std::vector<engine::SplayStats> all_stats;
   for (const int threads : {1, 3}) {
-    engine::TriangulateOptions options;
-    engine::TriangulationStats build_stats;
-    engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt(points, options, build_stats);
-    std::vector<std::uint32_t> order(points.size());
-    std::iota(order.begin(), order.end(), 0U);
-    const auto first = *engine::find_simplex(points, order).simplex;
-    dt.start(first[0], first[1], first[2], first[3]);
-    for (const std::uint32_t v : order) {
-      if (std::find(first.begin(), first.end(), v) == first.end()) dt.insert(v);
-    }
-    std::mt19937_64 rng(11);
-    int made = 0;
-    for (int attempt = 0; made < 40 && attempt < 100000; ++attempt) {
-      const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
-      if (!dt.mesh().tets.alive(t).load()) continue;
-      made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
-    }
-    ASSERT_EQ(made, 40);
+    BrokenMesh broken(points);
+    auto& dt = broken.dt;
+    ASSERT_EQ(broken.force_flips(40, 11), 40);
     engine::SplayStats stats;
     engine::splay_shared_mesh(dt.mesh(), {}, true, threads, stats);
     EXPECT_EQ(stats.scan_threads, static_cast<std::uint64_t>(threads));
@@ -140,26 +154,11 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
 // gives back the Delaunay mesh and touches only stars near them.
 TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   const auto points = generators::generate("uniform", 2000, 5).points;
-  engine::TriangulateOptions options;
-  engine::TriangulationStats build_stats;
-  engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt(points, options, build_stats);
-  std::vector<std::uint32_t> order(points.size());
-  std::iota(order.begin(), order.end(), 0U);
-  const auto first = *engine::find_simplex(points, order).simplex;
-  dt.start(first[0], first[1], first[2], first[3]);
-  for (const std::uint32_t v : order) {
-    if (std::find(first.begin(), first.end(), v) == first.end()) dt.insert(v);
-  }
+  BrokenMesh broken(points);
+  auto& dt = broken.dt;
   const auto limit = static_cast<VertexId>(points.size());
   const auto expected = canonical(dt.finite_tetrahedra(limit));
-  std::mt19937_64 rng(3);
-  int made = 0;
-  for (int attempt = 0; made < 20 && attempt < 100000; ++attempt) {
-    const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
-    if (!dt.mesh().tets.alive(t).load()) continue;
-    made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
-  }
-  ASSERT_EQ(made, 20);
+  ASSERT_EQ(broken.force_flips(20, 3), 20);
   ASSERT_GT(engine::validate(points, dt.finite_tetrahedra(limit)).non_delaunay_faces, 0U);
   engine::SplayStats stats;
   engine::splay_shared_mesh(dt.mesh(), {}, true, 1, stats);
