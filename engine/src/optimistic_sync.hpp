@@ -22,7 +22,6 @@
 
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
-#include "insertion_id_set.hpp"
 #include "shared_mesh.hpp"
 
 namespace dtlab::engine {
@@ -51,6 +50,10 @@ struct LockTable {
   // only, so a plain value.
   std::vector<TetId> waiting_on;
   static constexpr std::uint32_t kBurgled = 0x8000'0000U;
+  // A lock word is the owner's id, plus kLogged once the owner has saved the tetrahedron in its
+  // undo log (or created it): the owner asks its own word, already in cache, instead of a set.
+  static constexpr std::uint32_t kLogged = 0x4000'0000U;
+  static std::uint32_t owner_of(std::uint32_t word) { return word & ~kLogged; }
   std::mutex cycle;
   std::atomic<bool> stop{false};  // watchdog: give everything up
 };
@@ -98,9 +101,11 @@ inline Cycle find_cycle(const SharedMesh& mesh, const LockTable& table, std::uin
   const auto successor = [&](std::size_t i) { return i + 1 < chain.size() ? chain[i + 1] : self; };
   for (std::size_t i = 0; i < chain.size(); ++i) {
     const TetId t = table.waiting_on[chain[i]];
-    // acquire: synchronizes with the owner's compare-and-swap (release), so that a withdrawal
-    // sequenced before it is seen by the loads C below. (A and C need no order of their own.)
-    if (t == kNoTet || mesh.tets.lock_word(t).load(std::memory_order_acquire) != successor(i)) {
+    // acquire: synchronizes with the owner's compare-and-swap (release), or with its later
+    // kLogged store (release too), so that a withdrawal sequenced before the compare-and-swap is
+    // seen by the loads C below. (A and C need no order of their own.)
+    if (t == kNoTet || LockTable::owner_of(mesh.tets.lock_word(t).load(
+                           std::memory_order_acquire)) != successor(i)) {
       return Cycle::Stale;
     }
   }
@@ -132,7 +137,7 @@ class OptimisticSync {
   bool acquire(TetId t) {
     std::atomic<std::uint32_t>& word = mesh_.tets.lock_word(t);
     // Only this thread ever stores self_, so a relaxed load that sees it is exact.
-    if (word.load(std::memory_order_relaxed) == self_) return true;
+    if (LockTable::owner_of(word.load(std::memory_order_relaxed)) == self_) return true;
     bool waited = false;
     std::uint32_t registered_owner = 0;
     for (std::uint64_t spin = 0;; ++spin) {
@@ -145,6 +150,7 @@ class OptimisticSync {
         maybe_delay();
         return true;
       }
+      owner = LockTable::owner_of(owner);  // burglary never sets kLogged: its words stay exact
       if (owner == self_) return true;
       if (table_.stop.load(std::memory_order_relaxed)) {
         stop_waiting();
@@ -199,8 +205,12 @@ class OptimisticSync {
 
   void before_write(TetId t) {
     if (mode_ == Mode::Burglary) return;  // no undo
-    // Logged once; created tetrahedra are in the set from birth (retired whole on rollback).
-    if (!logged_or_created_.insert(t)) return;
+    // Logged once; created tetrahedra carry kLogged from birth (retired whole on rollback). Only
+    // this thread writes the word while it holds t. release: a find_cycle that reads this value
+    // still synchronizes with everything before the compare-and-swap that took t.
+    std::atomic<std::uint32_t>& word = mesh_.tets.lock_word(t);
+    if ((word.load(std::memory_order_relaxed) & LockTable::kLogged) != 0) return;
+    word.store(self_ | LockTable::kLogged, std::memory_order_release);
     const Tet& tet = mesh_.tets[t];
     Saved s{t, tet.neighbor, {}, mesh_.tets.alive(t).load(std::memory_order_relaxed)};
     if (mesh_.tets.has_children()) {
@@ -211,11 +221,11 @@ class OptimisticSync {
   }
 
   void created(TetId t) {
-    // Owned before it is published: nobody can lock it before this thread lets go.
-    mesh_.tets.lock_word(t).store(self_, std::memory_order_relaxed);
+    // Owned before it is published: nobody can lock it before this thread lets go. Never logged.
+    mesh_.tets.lock_word(t).store(mode_ == Mode::Burglary ? self_ : self_ | LockTable::kLogged,
+                                  std::memory_order_relaxed);
     held_.push_back(t);
     created_.push_back(t);
-    if (mode_ != Mode::Burglary) logged_or_created_.insert(t);
   }
 
   // Burglary: t, alive until now, dies by this thread's own write.
@@ -224,7 +234,6 @@ class OptimisticSync {
   }
 
   void commit() {
-    logged_or_created_.clear();
     log_.clear();
     created_.clear();
     own_kills_.clear();
@@ -263,7 +272,6 @@ class OptimisticSync {
     }
     log_.clear();
     created_.clear();
-    logged_or_created_.clear();
     release_all();
   }
 
@@ -395,9 +403,16 @@ class OptimisticSync {
   }
 
   void release_all() {
+    if (mode_ != Mode::Burglary) {
+      // release: this thread's writes are visible to the next owner. Nobody else writes a word
+      // this thread holds, so a plain store does (no locked instruction per tetrahedron).
+      for (const TetId t : held_) mesh_.tets.lock_word(t).store(0, std::memory_order_release);
+      held_.clear();
+      return;
+    }
     for (const TetId t : held_) {
-      // release: this thread's writes are visible to the next owner. A compare-and-swap, because
-      // a burglar may have taken the lock meanwhile (then it is the burglar's to release).
+      // release, as above. A compare-and-swap, because a burglar may have taken the lock
+      // meanwhile (then it is the burglar's to release).
       std::uint32_t expected = self_;
       mesh_.tets.lock_word(t).compare_exchange_strong(expected, 0, std::memory_order_release,
                                                       std::memory_order_relaxed);
@@ -423,7 +438,6 @@ class OptimisticSync {
   std::vector<TetId> held_;
   std::vector<TetId> created_;
   std::vector<Saved> log_;
-  InsertionIdSet logged_or_created_;  // the tetrahedra of log_ and created_
   std::vector<TetId> own_kills_;      // burglary: created tetrahedra this thread itself replaced
   std::vector<TetId> suspicious_;     // burglary: marks for the post-check
   std::vector<std::uint32_t> chain_;  // find_cycle's scratch
