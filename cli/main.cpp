@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
       {"static", dtlab::engine::Distribution::Static},
       {"dynamic", dtlab::engine::Distribution::Dynamic},
       {"strips", dtlab::engine::Distribution::Strips},
-      {"blocks", dtlab::engine::Distribution::Blocks}};
+      {"blocks", dtlab::engine::Distribution::Blocks},
+      {"auto", dtlab::engine::Distribution::Auto}};
   tri->add_option(
          "--method", targs.options.method,
          "sequential | pessimistic | optimistic-detect | optimistic-prevent | burglary | batch")
@@ -67,7 +68,8 @@ int main(int argc, char** argv) {
                   "worker threads (batch: T - 1 locating threads and one inserting thread, at "
                   "least one of each, so --threads 1 runs two)");
   tri->add_option("--distribution", targs.options.distribution,
-                  "static | dynamic | strips | blocks")
+                  "static | dynamic | strips | blocks | auto (default: static with --location "
+                  "dag, as in the paper; blocks with --location walk, so that threads work apart)")
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
   tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
   std::string repair = "none";
@@ -156,6 +158,9 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   experiment->add_option("--location", eopts.locations, "dag, walk or both: dag,walk")
       ->delimiter(',');
+  experiment->add_option("--distribution", eopts.distribution,
+                         "the parallel runs' distribution: static | dynamic | strips | blocks | "
+                         "auto (default: static in DAG mode, blocks in walk mode)");
   experiment->add_option("--data", eopts.data_dir,
                          "the real models' directory (default $DTLAB_DATA_DIR or ../shared/data "
                          "beside the source tree)");

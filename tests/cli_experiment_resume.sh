@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # dtlab experiment --resume: keeps the finished rows of an interrupted study (a cut last line is
 # dropped), runs only the others, runs failed ones again, reads an older CSV whose columns are a
-# subset of today's, and moves rows of other parameters aside. Also: --list names every study;
-# a bad study, input, location, --threads for a sequential study or an unwritable directory is an
+# subset of today's, moves rows of other parameters aside, and matches a parallel row written
+# before the key named the distribution with the one it ran with. Also: --list names every study;
+# a bad study, input, location, distribution, --threads for a sequential study or an unwritable directory is an
 # error (exit 2) with a message.
 set -euo pipefail
 dtlab="$1"
@@ -56,6 +57,38 @@ grep -q "1 rows of other parameters moved to" "$dir/old.err" || fail "$(cat "$di
 [ "$(($(wc -l <"$dir/old/flips.other-runs.csv") - 1))" -eq 1 ] || fail "no row moved aside"
 diff <(keys "$csv") <(keys "$dir/old/flips.csv") >/dev/null || fail "old CSV: runs differ"
 
+# Keys written before the distribution joined them: a parallel row is matched with the
+# distribution it ran with. The walk mode's default was static then and is blocks now, so those
+# rows are moved aside and run again; the DAG mode's (static then and now) are kept.
+"$dtlab" experiment speedup --quick --out "$dir/dist" --no-plot >/dev/null 2>&1
+mkdir "$dir/olddist"
+moved=$(python3 - "$dir/dist/speedup.csv" "$dir/olddist/speedup.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1], newline="")))
+moved = 0
+for r in rows:
+    if r["method"] != "sequential":
+        assert r["run_key"].endswith("/" + r["distribution"]), r["run_key"]
+        r["run_key"] = r["run_key"][: -len("/" + r["distribution"])]
+        if r["location"] == "walk":
+            assert r["distribution"] == "blocks", r["distribution"]
+            r["distribution"] = "static"
+            moved += 1
+with open(sys.argv[2], "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(rows[0].keys()), lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+print(moved)
+PY
+)
+[ "$moved" -ge 1 ] || fail "speedup --quick has no parallel walk-mode run"
+"$dtlab" experiment speedup --quick --resume --out "$dir/olddist" --no-plot >/dev/null 2>"$dir/olddist.err"
+grep -q "$moved rows of other parameters moved to" "$dir/olddist.err" || fail "$(cat "$dir/olddist.err")"
+[ "$(ran "$dir/olddist.err")" -eq "$moved" ] ||
+  fail "old keys: resume ran $(ran "$dir/olddist.err") runs, not $moved"
+diff <(keys "$dir/dist/speedup.csv") <(keys "$dir/olddist/speedup.csv") >/dev/null ||
+  fail "old keys: runs differ"
+
 listed=$("$dtlab" experiment --list | awk '{print $1}' | tr '\n' ' ')
 [ "$listed" = "burglary-errors predicate-errors speedup breakdown flips deadlocks hull-loss compare " ] ||
   fail "--list: $listed"
@@ -73,6 +106,7 @@ expect_error "unknown study" experiment no-such-study --out "$dir/x"
 expect_error "neither a generator family" experiment flips --quick --inputs no_such_model --out "$dir/x"
 expect_error "out DIR is required" experiment flips --quick
 expect_error "unknown location" experiment flips --quick --location sideways --out "$dir/x"
+expect_error "unknown distribution" experiment speedup --quick --distribution diagonal --out "$dir/x"
 expect_error "takes no --threads" experiment flips --quick --threads 2 --out "$dir/x"
 touch "$dir/file"
 expect_error "Not a directory" experiment flips --quick --out "$dir/file/sub"

@@ -247,6 +247,35 @@ TEST(ParallelMethods, DistributionsCoverEveryPointOnce) {
   EXPECT_LE(left_max, right_min);
 }
 
+TEST(ParallelMethods, AutoDistributionFollowsTheLocationMode) {
+  // The default: the paper's static split in DAG mode, a spatial one in walk mode, where each
+  // thread sweeps its own curve; an explicit choice is kept in both modes.
+  engine::TriangulateOptions options;
+  EXPECT_EQ(options.distribution, Distribution::Auto);
+  EXPECT_EQ(engine::effective_distribution(options), Distribution::Static);
+  options.location = engine::Location::Walk;
+  EXPECT_EQ(engine::effective_distribution(options), Distribution::Blocks);
+  options.distribution = Distribution::Dynamic;
+  EXPECT_EQ(engine::effective_distribution(options), Distribution::Dynamic);
+  options.location = engine::Location::Dag;
+  EXPECT_EQ(engine::effective_distribution(options), Distribution::Dynamic);
+  // The run reports the distribution it used.
+  const auto points = generators::generate("uniform", 500, 4).points;
+  options = {};
+  options.method = Method::OptimisticDetect;
+  options.threads = 2;
+  options.location = engine::Location::Walk;
+  const auto walk = engine::triangulate(points, options);
+  EXPECT_NE(engine::stats_json(walk.stats, options, "optimistic-detect", 2)
+                .find(R"("distribution": "blocks")"),
+            std::string::npos);
+  options.location = engine::Location::Dag;
+  const auto dag = engine::triangulate(points, options);
+  EXPECT_NE(engine::stats_json(dag.stats, options, "optimistic-detect", 2)
+                .find(R"("distribution": "static")"),
+            std::string::npos);
+}
+
 TEST(ParallelMethods, StatsCountWaitsAndGiveUps) {
   const auto points = generators::generate("uniform", 3000, 1).points;
   engine::TriangulateOptions options;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -264,6 +265,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
 std::vector<std::vector<std::uint32_t>> distribute(const std::vector<Point3>& points,
                                                    const std::vector<std::uint32_t>& order,
                                                    Distribution distribution, int threads) {
+  assert(distribution != Distribution::Auto);
   std::vector<std::vector<std::uint32_t>> parts;
   if (distribution == Distribution::Strips || distribution == Distribution::Blocks) {
     split_by_median(points, order, threads, 0, distribution == Distribution::Strips ? 1 : 3, parts);
@@ -316,13 +318,14 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   // Walk mode: dead slots are reused, after the epochs say no operation can reach them.
   EpochDomain epochs(threads + 1);  // the batch method: its locating threads and its inserter
   std::atomic<std::size_t> shared_index{0};
-  const bool dynamic = options.distribution == Distribution::Dynamic;
+  const Distribution distribution = effective_distribution(options);
+  const bool dynamic = distribution == Distribution::Dynamic;
   const bool walk = options.location == Location::Walk;
   // Walk mode: each thread inserts its share in its own BRIO and Hilbert order (one shared order
   // for the dynamic distribution).
   if (walk && dynamic) brio_hilbert_order(points, order);
   auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
-                       : distribute(points, order, options.distribution, threads);
+                       : distribute(points, order, distribution, threads);
   if (walk) {
     for (auto& part : parts) brio_hilbert_order(points, part);
   }
@@ -426,7 +429,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     std::atomic<std::uint64_t> full_waits{0};
     std::uint64_t empty_waits = 0;
     auto locator_parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
-                                 : distribute(points, order, options.distribution, locators);
+                                 : distribute(points, order, distribution, locators);
     if (walk) {
       for (auto& part : locator_parts) brio_hilbert_order(points, part);
     }

@@ -36,7 +36,8 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
                                         TriangulationStats& stats);
 
 // The points of `order` split among `threads` per the distribution (static, strips, blocks;
-// dynamic is handled by the caller with a shared index). Each part keeps the random order.
+// dynamic is handled by the caller with a shared index, and auto resolved by
+// effective_distribution). Each part keeps the random order.
 std::vector<std::vector<std::uint32_t>> distribute(const std::vector<Point3>& points,
                                                    const std::vector<std::uint32_t>& order,
                                                    Distribution distribution, int threads);

@@ -229,8 +229,15 @@ const char* to_string(Distribution d) {
       return "strips";
     case Distribution::Blocks:
       return "blocks";
+    case Distribution::Auto:
+      return "auto";
   }
   return "?";
+}
+
+Distribution effective_distribution(const TriangulateOptions& options) {
+  if (options.distribution != Distribution::Auto) return options.distribution;
+  return options.location == Location::Walk ? Distribution::Blocks : Distribution::Static;
 }
 
 const char* to_string(Repair r) {
@@ -494,7 +501,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   j["repair"] = to_string(options.repair);
   j["method"] = method;
   j["threads"] = threads;
-  j["distribution"] = to_string(options.distribution);
+  j["distribution"] = to_string(effective_distribution(options));
   j["predicates"] = to_string(options.kernel);
   j["location"] = to_string(options.location);
   j["bounding"] = to_string(options.bounding);

@@ -41,6 +41,16 @@ engine::Location parse_location(const std::string& name) {
   throw std::invalid_argument("unknown location " + name + " (dag | walk)");
 }
 
+engine::Distribution parse_distribution(const std::string& name) {
+  for (const engine::Distribution d :
+       {engine::Distribution::Static, engine::Distribution::Dynamic, engine::Distribution::Strips,
+        engine::Distribution::Blocks, engine::Distribution::Auto}) {
+    if (name == engine::to_string(d)) return d;
+  }
+  throw std::invalid_argument("unknown distribution " + name +
+                              " (static | dynamic | strips | blocks | auto)");
+}
+
 StudyParams resolve(const Study& study, const ExperimentOptions& options) {
   const StudyDefaults& d = study.defaults;
   StudyParams p;
@@ -56,6 +66,7 @@ StudyParams resolve(const Study& study, const ExperimentOptions& options) {
   p.inputs = !options.inputs.empty() ? options.inputs : (options.quick ? d.quick_inputs : d.inputs);
   for (const std::string& l : options.locations) p.locations.push_back(parse_location(l));
   if (p.locations.empty()) p.locations = d.locations;
+  if (!options.distribution.empty()) p.distribution = parse_distribution(options.distribution);
   p.data_dir =
       !options.data_dir.empty()
           ? options.data_dir
@@ -150,7 +161,16 @@ Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& plann
   for (const auto& row : old.rows) {
     std::vector<std::string> mapped(run_columns().size());
     for (std::size_t i = 0; i < row.size(); ++i) mapped[to_new[i]] = row[i];
-    const std::string& key = mapped[run_column("run_key")];
+    std::string& key = mapped[run_column("run_key")];
+    // Keys written before the distribution joined them: a parallel row gets the one it ran with.
+    const std::string& distribution = mapped[run_column("distribution")];
+    const std::string suffix = "/" + distribution;
+    if (mapped[run_column("engine")] == "dtlab" && mapped[run_column("method")] != "sequential" &&
+        !distribution.empty() &&
+        (key.size() < suffix.size() ||
+         key.compare(key.size() - suffix.size(), suffix.size(), suffix) != 0)) {
+      key += suffix;
+    }
     if (mapped[run_column("status")] != "ok") {
       ++failed;
     } else if (planned.count(key) == 0) {

@@ -77,12 +77,17 @@ std::size_t run_column(const std::string& column) {
 
 std::string run_key(const RunSpec& spec) {
   const engine::TriangulateOptions& o = spec.options;
+  // Parallel dtlab runs only (the key of every other run is as before): --resume must not take a
+  // row of one distribution for another.
+  const bool split = spec.engine == Engine::Dtlab && o.method != engine::Method::Sequential;
+  const std::string distribution =
+      split ? std::string("/") + engine::to_string(engine::effective_distribution(o)) : "";
   return spec.input + ":" + std::to_string(spec.size) + "/" + spec.variant + "/" +
          to_string(spec.engine) + "/" + engine::to_string(o.method) + "/" +
          std::to_string(o.threads) + "t/" + engine::to_string(o.kernel) + "/" +
          engine::to_string(o.location) + "/" + engine::to_string(o.bounding) + "/" +
          engine::to_string(o.repair) + "/seed" + std::to_string(o.seed) + "/round" +
-         std::to_string(spec.round);
+         std::to_string(spec.round) + distribution;
 }
 
 }  // namespace dtlab::experiments

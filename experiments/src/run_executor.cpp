@@ -140,7 +140,7 @@ void add_run_cells(const std::string& study, const RunSpec& spec, unsigned hardw
   fill("location", engine::to_string(o.location));
   fill("bounding", engine::to_string(o.bounding));
   fill("repair", engine::to_string(o.repair));
-  fill("distribution", engine::to_string(o.distribution));
+  fill("distribution", engine::to_string(engine::effective_distribution(o)));
   cells["options.max_flips_per_insertion"] = std::to_string(o.max_flips_per_insertion);
   cells["options.max_location_steps"] = std::to_string(o.max_location_steps);
   cells["options.watchdog_seconds"] = nlohmann::json(o.watchdog_seconds).dump();

@@ -34,6 +34,7 @@ struct StudyParams {
   std::vector<std::int64_t> sizes;
   std::vector<std::string> inputs;
   std::vector<engine::Location> locations;
+  engine::Distribution distribution = engine::Distribution::Auto;
   std::string data_dir;
   unsigned hardware_threads = 1;
 };
@@ -92,6 +93,7 @@ void for_each_base_run(const StudyParams& params, Fn fn) {
             for (const engine::Location location : params.locations) {
               RunSpec spec = dtlab_run(label, source, n, static_cast<std::uint64_t>(seed));
               spec.options.location = location;
+              spec.options.distribution = params.distribution;
               fn(spec);
             }
           }

@@ -50,7 +50,7 @@ std::vector<RunSpec> plan(const StudyParams& p) {
                 spec.options.location = engine::Location::Walk;
                 spec.options.method = method;
                 spec.options.threads = threads;
-                spec.options.distribution = engine::Distribution::Blocks;
+                spec.options.distribution = p.distribution;  // auto: blocks in walk mode
                 spec.variant = std::string("dtlab walk ") + engine::to_string(method);
                 runs.push_back(spec);
               }

@@ -18,7 +18,9 @@ enum class KernelKind { Fast, Adaptive, Filtered, Exact };
 // The lock methods of the paper (Sect. 5) and the batch method it described (docs/design.md).
 enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent, Burglary, Batch };
 // How the permuted points are split among the threads (paper Sect. 6).
-enum class Distribution { Static, Dynamic, Strips, Blocks };
+// Auto: static in DAG mode (the paper's), blocks in walk mode, where each thread inserts its
+// share along its own curve and the threads must work apart (effective_distribution).
+enum class Distribution { Static, Dynamic, Strips, Blocks, Auto };
 enum class Bounding { Infinite, AuxTet };
 // Dag: the paper's history DAG from a random order. Walk: BRIO rounds in Hilbert order and a
 // visibility walk from the last insertion, dead slots reused (docs/design.md, "Walk mode").
@@ -52,7 +54,7 @@ struct TriangulateOptions {
   bool progress = false;
   Method method = Method::Sequential;
   int threads = 1;
-  Distribution distribution = Distribution::Static;
+  Distribution distribution = Distribution::Auto;
   // Random short delays while locks are held, to shake out races (tests).
   bool stress = false;
   // A parallel run with no finished insertion for this long is stopped and reported as a
@@ -64,6 +66,10 @@ struct TriangulateOptions {
   // The repair after the run (Flips and Rebuild: burglary only).
   Repair repair = Repair::None;
 };
+
+// The distribution a parallel run uses: options.distribution, with Auto resolved by the location
+// mode.
+Distribution effective_distribution(const TriangulateOptions& options);
 
 struct FlipCounts {
   std::uint64_t s23 = 0;

@@ -20,6 +20,7 @@ struct ExperimentOptions {
   std::vector<std::int64_t> sizes;     // empty: the study's default
   std::vector<std::string> inputs;     // generator families or model names; empty: default
   std::vector<std::string> locations;  // "dag", "walk"; empty: the study's default
+  std::string distribution;            // the parallel runs' split (static, ..., auto); empty: auto
   std::string data_dir;                // the real models; empty: $DTLAB_DATA_DIR or ../shared/data
   std::string tools_dir;     // plot_study.py; empty: $DTLAB_TOOLS_DIR or the source tree's tools/
   std::string command_line;  // written above the summary table
