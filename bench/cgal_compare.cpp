@@ -37,7 +37,8 @@ struct Sample {
 
 struct Engine {
   std::string name;
-  std::function<Sample(const std::vector<Point3>&)> run;
+  // Gets the child's own image of the points (after the fork): it may consume them.
+  std::function<Sample(std::vector<Point3>&)> run;
   std::vector<Sample> samples;
 };
 
@@ -48,7 +49,7 @@ double peak_rss_bytes() {
 }
 
 // Runs `engine` in a child process; its sample comes back through a pipe.
-bool run_isolated(const Engine& engine, const std::vector<Point3>& points, Sample& out) {
+bool run_isolated(const Engine& engine, std::vector<Point3>& points, Sample& out) {
   int fds[2];
   if (pipe(fds) != 0) return false;
   const pid_t pid = fork();
@@ -78,7 +79,7 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-Sample run_dtlab(const std::vector<Point3>& points, dtlab::engine::Location location,
+Sample run_dtlab(std::vector<Point3>& points, dtlab::engine::Location location,
                  dtlab::engine::Method method, int threads, std::uint64_t seed) {
   dtlab::engine::TriangulateOptions options;
   options.seed = seed;
@@ -88,7 +89,8 @@ Sample run_dtlab(const std::vector<Point3>& points, dtlab::engine::Location loca
   if (method != dtlab::engine::Method::Sequential) {
     options.distribution = dtlab::engine::Distribution::Blocks;
   }
-  const auto result = dtlab::engine::triangulate(points, options);
+  // Moved in: the engine scales and orders them in place, as a user who gives them up lets it.
+  const auto result = dtlab::engine::triangulate(std::move(points), options);
   return {result.stats.seconds.total, static_cast<double>(result.tetrahedra.size()), 0};
 }
 
@@ -148,16 +150,16 @@ int compare(int argc, char** argv) {
   using dtlab::engine::Location;
   using dtlab::engine::Method;
   std::vector<Engine> engines;
-  auto add = [&](std::string name, std::function<Sample(const std::vector<Point3>&)> run) {
+  auto add = [&](std::string name, std::function<Sample(std::vector<Point3>&)> run) {
     engines.push_back(Engine{std::move(name), std::move(run), {}});
   };
   add("dtlab walk, sequential",
-      [&](const auto& p) { return run_dtlab(p, Location::Walk, Method::Sequential, 1, seed); });
+      [&](auto& p) { return run_dtlab(p, Location::Walk, Method::Sequential, 1, seed); });
   if (dag) {
     add("dtlab DAG, sequential",
-        [&](const auto& p) { return run_dtlab(p, Location::Dag, Method::Sequential, 1, seed); });
+        [&](auto& p) { return run_dtlab(p, Location::Dag, Method::Sequential, 1, seed); });
   }
-  add("CGAL, sequential", [](const auto& p) { return run_cgal(p, 1); });
+  add("CGAL, sequential", [](auto& p) { return run_cgal(p, 1); });
   if (threads > 1) {
     std::stringstream list(methods);
     std::string name;
@@ -175,13 +177,12 @@ int compare(int argc, char** argv) {
         std::fprintf(stderr, "cgal_compare: unknown method %s\n", name.c_str());
         return 2;
       }
-      add("dtlab walk, " + name + " " + std::to_string(threads) + "t", [&, method](const auto& p) {
-        return run_dtlab(p, Location::Walk, method, threads, seed);
-      });
+      add("dtlab walk, " + name + " " + std::to_string(threads) + "t",
+          [&, method](auto& p) { return run_dtlab(p, Location::Walk, method, threads, seed); });
     }
     if (dtlab::experiments::cgal_parallel_available()) {
       add("CGAL, parallel (TBB) " + std::to_string(threads) + "t",
-          [&](const auto& p) { return run_cgal(p, threads); });
+          [&](auto& p) { return run_cgal(p, threads); });
     }
   }
 

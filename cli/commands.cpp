@@ -93,10 +93,12 @@ int run_triangulate(const TriangulateArgs& args) {
   if (!args.output.empty() && !ends_with(args.output, ".ele") && !ends_with(args.output, ".vtu")) {
     throw std::invalid_argument(args.output + ": output must end in .ele or .vtu");
   }
-  const auto points = load_input(args.input, args.options.seed);
   engine::TriangulateOptions options = args.options;
   options.threads = args.threads;
-  const engine::Triangulation result = engine::triangulate(points, options);
+  // Moved in, handed back: one copy of the points at the run's peak.
+  const engine::Triangulation result =
+      engine::triangulate(load_input(args.input, args.options.seed), options);
+  const std::vector<predicates::Point3>& points = result.points;
 
   std::optional<engine::ValidationReport> report;
   if (args.validate) report = engine::validate(points, result.tetrahedra, args.validate_with);

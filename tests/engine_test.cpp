@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/triangulate.hpp"
@@ -353,6 +354,57 @@ TEST(StoreLimit, ASequentialRunThatNeedsMoreStopsWithAClearError) {
   }
   options.max_tetrahedra = 0;  // the default limit fits
   EXPECT_TRUE(engine::validate(points, engine::triangulate(points, options).tetrahedra).valid());
+}
+
+TEST(MovedInput, ComesBackUnchangedWithTheSameMesh) {
+  // The engine scales and (sequential walk) reorders moved points in place; it must hand them back
+  // bit for bit, and the mesh must be the one the copying overload makes. Tiny magnitudes are
+  // scaled up by 2^k, duplicates are renamed after the reordering, the auxiliary points dropped.
+  auto tiny = generators::generate("uniform", 600, 3).points;
+  for (Point3& p : tiny) p = {std::ldexp(p.x, -600), std::ldexp(p.y, -600), std::ldexp(p.z, -600)};
+  const std::vector<std::vector<Point3>> inputs{generators::generate("duplicates", 800, 2).points,
+                                                tiny, generators::generate("grid", 729, 1).points};
+  for (const auto& original : inputs) {
+    for (const auto location : {engine::Location::Walk, engine::Location::Dag}) {
+      for (const auto method : {engine::Method::Sequential, engine::Method::OptimisticDetect}) {
+        for (const auto bounding : {engine::Bounding::Infinite, engine::Bounding::AuxTet}) {
+          TriangulateOptions options;
+          options.location = location;
+          options.method = method;
+          options.threads = method == engine::Method::Sequential ? 1 : 2;
+          options.bounding = bounding;
+          const auto copied = engine::triangulate(original, options);
+          std::vector<Point3> moved = original;
+          const auto result = engine::triangulate(std::move(moved), options);
+          const std::string what = std::string(engine::to_string(location)) + " " +
+                                   engine::to_string(method) + " " + engine::to_string(bounding);
+          EXPECT_TRUE(result.points == original) << what;
+          if (method == engine::Method::Sequential) {
+            EXPECT_EQ(result.tetrahedra, copied.tetrahedra) << what;
+          } else {  // the threads' interleaving orders the output differently; the set is unique
+            EXPECT_EQ(canonical(result.tetrahedra), canonical(copied.tetrahedra)) << what;
+          }
+          if (bounding == engine::Bounding::Infinite) {  // aux-tet may lose hull tetrahedra
+            EXPECT_TRUE(engine::validate(original, result.tetrahedra).valid()) << what;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(MovedInput, AnErrorLeavesThePointsAsTheyWere) {
+  // Thrown after the points were scaled and reordered: the store's limit.
+  auto original = generators::generate("uniform", 2000, 1).points;
+  for (Point3& p : original) p = {std::ldexp(p.x, 300), std::ldexp(p.y, 300), p.z};
+  for (const auto location : {engine::Location::Walk, engine::Location::Dag}) {
+    TriangulateOptions options;
+    options.location = location;
+    options.max_tetrahedra = 5000;
+    std::vector<Point3> moved = original;
+    EXPECT_THROW((void)engine::triangulate(std::move(moved), options), engine::TriangulationError);
+    EXPECT_TRUE(moved == original) << engine::to_string(location);
+  }
 }
 
 }  // namespace

@@ -27,7 +27,8 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   X(predicates::Audited<predicates::FilteredKernel>) \
   X(predicates::Audited<predicates::ExactKernel>)
 
-// The sequential engine on the same arguments (engine/src/triangulate.cpp).
+// The sequential engine on the same arguments (engine/src/triangulate.cpp); an empty order
+// inserts 0 .. input_count - 1.
 template <class K>
 std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::size_t input_count,
                                         const std::vector<std::uint32_t>& order,

@@ -65,10 +65,12 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   IncrementalDelaunay<K> dt(points, options, stats);
   dt.start(first[0], first[1], first[2], first[3]);
   if (skip_first) stats.inserted += 4;
-  Progress progress(options.progress, order.size());
-  std::size_t done = 0;
-  for (const std::uint32_t v : order) {
-    progress.update(++done);
+  // An empty order is the identity (the sequential walk stores the points in insertion order).
+  const std::size_t count = order.empty() ? input_count : order.size();
+  Progress progress(options.progress, count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto v = order.empty() ? static_cast<std::uint32_t>(i) : order[i];
+    progress.update(i + 1);
     if (skip_first && (v == first[0] || v == first[1] || v == first[2] || v == first[3])) continue;
     switch (dt.insert(v)) {
       case IncrementalDelaunay<K>::Outcome::Inserted:
@@ -181,6 +183,28 @@ void name_duplicates_by_lowest_index(const std::vector<Point3>& input,
   }
 }
 
+void scale_points(std::vector<Point3>& points, int exponent) {
+  for (Point3& p : points) {
+    p = {std::ldexp(p.x, exponent), std::ldexp(p.y, exponent), std::ldexp(p.z, exponent)};
+  }
+}
+
+// points[i] = old points[from[i]] for a permutation `from`. Through a second array: this runs
+// before the store grows or after it is released, below the run's peak either way, and a gather
+// is faster than following the permutation's cycles in place.
+void permute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from) {
+  std::vector<Point3> gathered(points.size());
+  for (std::size_t i = 0; i < gathered.size(); ++i) gathered[i] = points[from[i]];
+  points.swap(gathered);
+}
+
+// The inverse: points[from[i]] = old points[i].
+void unpermute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from) {
+  std::vector<Point3> scattered(points.size());
+  for (std::size_t i = 0; i < scattered.size(); ++i) scattered[from[i]] = points[i];
+  points.swap(scattered);
+}
+
 }  // namespace
 
 const char* to_string(KernelKind k) {
@@ -254,24 +278,26 @@ const char* to_string(Repair r) {
   return "?";
 }
 
-Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOptions& options) {
+namespace {
+
+// The run on the caller's points, which it scales and reorders in place (no second copy at the
+// run's peak) and hands back as they were, on every path out; unless `as_given` (the same points,
+// untouched) is there, when they are a scratch copy and the duplicates' names and the auxiliary
+// run's reference come from `as_given` instead.
+Triangulation triangulate_in_place(std::vector<Point3>& points, const TriangulateOptions& options,
+                                   const std::vector<Point3>* as_given) {
   const auto start = Clock::now();
   Triangulation result;
   TriangulationStats& stats = result.stats;
-  stats.points = input.size();
-  if (input.size() >= static_cast<std::size_t>(kInfiniteVertex) - 8) {
+  const std::size_t input_count = points.size();
+  stats.points = input_count;
+  if (input_count >= static_cast<std::size_t>(kInfiniteVertex) - 8) {
     throw TriangulationError("too many points for 32-bit vertex ids");
   }
 
-  // Exact power-of-two scaling of the largest magnitude into [2^99, 2^100) (signs are unchanged),
-  // for every kernel when it is lossless, so that all kernels see the same numbers. Every input is
-  // taken: when some coordinates still lie outside the range where expansion arithmetic is exact
-  // (valid_range.hpp), the adaptive and filtered kernels hand the calls their float stage cannot
-  // decide to GMP.
-  std::vector<Point3> points = input;
   double max_abs = 0.0;
   double min_abs = 0.0;
-  for (const Point3& p : input) {
+  for (const Point3& p : points) {
     for (const double c : {p.x, p.y, p.z}) {
       if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
       const double m = std::fabs(c);
@@ -279,52 +305,63 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
       if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
     }
   }
-  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
-  if (scaling.lossless) {
-    stats.scale_exponent = scaling.exponent;
-    for (Point3& p : points) {
-      p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
-           std::ldexp(p.z, scaling.exponent)};
-    }
-  }
-
-  std::vector<std::uint32_t> order = random_order(input.size(), options.seed);
-  const SimplexSearch search = find_simplex(input, order);
-  // The walk mode's order (the parallel methods give each thread its own, parallel_methods.cpp).
-  // The sequential walk also renumbers the vertices in that order: the points are stored in the
-  // order they are inserted (in the scaled copy, so at no extra memory), so that the points of
-  // neighbouring tetrahedra lie close in memory; the output is named by input index again below.
-  std::vector<std::uint32_t> input_index;  // engine vertex id -> input index (walk mode)
-  std::array<std::uint32_t, 4> simplex{};
-  if (search.simplex) simplex = *search.simplex;
-  if (options.location == Location::Walk && options.method == Method::Sequential &&
-      search.simplex) {
-    brio_hilbert_order(input, order);
-    input_index = order;
-    std::vector<Point3> sorted(points.size());
-    std::vector<std::uint32_t> engine_id(points.size());
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      sorted[i] = points[order[i]];
-      engine_id[order[i]] = static_cast<std::uint32_t>(i);
-    }
-    points.swap(sorted);
-    for (auto& v : simplex) v = engine_id[v];
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-  }
+  // The first tetrahedron and the walk mode's order come from the input as given.
+  std::vector<std::uint32_t> order = random_order(input_count, options.seed);
+  const SimplexSearch search = find_simplex(points, order);
   if (!search.simplex) {
     throw TriangulationError("no tetrahedralization exists: the affine dimension of the " +
-                             std::to_string(input.size()) + " input points is " +
+                             std::to_string(input_count) + " input points is " +
                              dimension_name(search.dimension) +
                              "; at least 4 points not in one plane are needed");
   }
+  std::array<std::uint32_t, 4> simplex = *search.simplex;
+  // The sequential walk inserts in BRIO and Hilbert order (the parallel methods give each thread
+  // its own, parallel_methods.cpp) and renumbers the vertices in that order: the points are stored
+  // in the order they are inserted, so that the points of neighbouring tetrahedra lie close in
+  // memory.
+  std::vector<std::uint32_t> input_index;  // engine vertex id -> input index (sequential walk)
+  if (options.location == Location::Walk && options.method == Method::Sequential) {
+    brio_hilbert_order(points, order);
+    input_index = std::move(order);
+    std::vector<std::uint32_t> engine_id(input_count);
+    for (std::size_t i = 0; i < input_count; ++i) {
+      engine_id[input_index[i]] = static_cast<std::uint32_t>(i);
+    }
+    permute(points, input_index);
+    for (auto& v : simplex) v = engine_id[v];
+    order.clear();  // the identity: insertion order is storage order now (4 bytes a point less)
+    order.shrink_to_fit();
+  }
+
+  // Exact power-of-two scaling of the largest magnitude into [2^99, 2^100) (signs are unchanged),
+  // for every kernel when it is lossless, so that all kernels see the same numbers; undone before
+  // the points are handed back. Every input is taken: when some coordinates still lie outside the
+  // range where expansion arithmetic is exact (valid_range.hpp), the adaptive and filtered kernels
+  // hand the calls their float stage cannot decide to GMP.
+  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+  if (scaling.lossless) {
+    stats.scale_exponent = scaling.exponent;
+    scale_points(points, scaling.exponent);
+  }
+  // The caller's points again: unscaled (exact, the scaling is lossless), auxiliary points
+  // dropped, in input order.
+  auto restore_points = [&] {
+    points.resize(input_count);
+    if (scaling.lossless) scale_points(points, -scaling.exponent);
+    if (!input_index.empty()) unpermute(points, input_index);
+  };
 
   // The store's limit ends the run with the input's size in the message (tet_mesh.hpp).
   auto run = [&](const std::array<std::uint32_t, 4>& first, bool skip_first) {
     try {
-      return dispatch(points, input.size(), order, first, skip_first, options, stats);
+      return dispatch(points, input_count, order, first, skip_first, options, stats);
     } catch (const StoreFull& e) {
-      throw TriangulationError(std::string(e.what()) + "; " + std::to_string(input.size()) +
+      restore_points();
+      throw TriangulationError(std::string(e.what()) + "; " + std::to_string(input_count) +
                                " points need more in this run");
+    } catch (...) {
+      restore_points();
+      throw;
     }
   };
   if (options.bounding == Bounding::Infinite) {
@@ -350,6 +387,7 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     for (std::size_t i = n; i < points.size(); ++i) {
       if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) ||
           !std::isfinite(points[i].z)) {
+        restore_points();
         throw TriangulationError(
             "the auxiliary tetrahedron (200 x the bounding box) overflows double; use "
             "--bounding infinite");
@@ -357,6 +395,8 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     }
     result.tetrahedra = run({n, n + 1, n + 2, n + 3}, false);
   }
+  if (as_given == nullptr) restore_points();
+  const std::vector<Point3>& input = as_given != nullptr ? *as_given : points;
   if (!input_index.empty()) {
     for (auto& t : result.tetrahedra) {
       for (auto& v : t) v = input_index[v];
@@ -384,6 +424,19 @@ Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOpt
     stats.hull_tetrahedra_lost = static_cast<std::int64_t>(lost.size());
   }
   stats.peak_rss_bytes = peak_rss_bytes();
+  return result;
+}
+
+}  // namespace
+
+Triangulation triangulate(const std::vector<Point3>& input, const TriangulateOptions& options) {
+  std::vector<Point3> points = input;
+  return triangulate_in_place(points, options, &input);
+}
+
+Triangulation triangulate(std::vector<Point3>&& input, const TriangulateOptions& options) {
+  Triangulation result = triangulate_in_place(input, options, nullptr);
+  result.points = std::move(input);
   return result;
 }
 

@@ -55,13 +55,15 @@ Cells measure_cgal(const RunSpec& spec, const std::vector<predicates::Point3>& p
 
 }  // namespace
 
-Cells measure_run(const RunSpec& spec, const std::vector<predicates::Point3>& points) {
+Cells measure_run(const RunSpec& spec, std::vector<predicates::Point3>& points) {
   if (spec.engine != Engine::Dtlab) return measure_cgal(spec, points);
   engine::TriangulateOptions options = spec.options;
   options.progress = false;
   options.audit = spec.audit;
   if (spec.audit) predicates::audit_counters().reset();
-  const engine::Triangulation result = engine::triangulate(points, options);
+  // Moved in (the engine scales and orders them in place), handed back for the validator.
+  engine::Triangulation result = engine::triangulate(std::move(points), options);
+  points = std::move(result.points);
   Cells cells;
   for (auto& [key, value] : flatten(nlohmann::ordered_json::parse(engine::stats_json(
            result.stats, options, engine::to_string(options.method), options.threads)))) {

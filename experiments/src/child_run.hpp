@@ -13,6 +13,6 @@ namespace dtlab::experiments {
 using Cells = std::map<std::string, std::string>;
 
 // Throws what the engine throws (TriangulationError, ...): the caller records it.
-Cells measure_run(const RunSpec& spec, const std::vector<predicates::Point3>& points);
+Cells measure_run(const RunSpec& spec, std::vector<predicates::Point3>& points);
 
 }  // namespace dtlab::experiments

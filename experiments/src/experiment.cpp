@@ -92,7 +92,8 @@ StudyParams resolve(const Study& study, const ExperimentOptions& options) {
 // The points of a run; a generator's points depend on the seed, a model's do not.
 class PointCache {
  public:
-  const std::vector<predicates::Point3>& get(const RunSpec& spec) {
+  // Mutable for the forked child, which moves its image of them into the engine.
+  std::vector<predicates::Point3>& get(const RunSpec& spec) {
     std::string family;
     std::int64_t n = 0;
     const bool generated = generators::parse_spec(spec.source, family, n);

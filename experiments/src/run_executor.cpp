@@ -75,8 +75,7 @@ std::string read_all(int fd) {
   return text;
 }
 
-[[noreturn]] void child(int fd, const RunSpec& spec,
-                        const std::vector<predicates::Point3>& points) {
+[[noreturn]] void child(int fd, const RunSpec& spec, std::vector<predicates::Point3>& points) {
   // A study interrupted by killing the parent alone must not leave its run behind.
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   Cells cells;
@@ -153,7 +152,7 @@ void add_run_cells(const std::string& study, const RunSpec& spec, unsigned hardw
 }  // namespace
 
 std::vector<std::string> execute_isolated(const std::string& study, const RunSpec& spec,
-                                          const std::vector<predicates::Point3>& points,
+                                          std::vector<predicates::Point3>& points,
                                           unsigned hardware_threads) {
   const auto start = std::chrono::steady_clock::now();
   std::fflush(nullptr);  // nothing buffered is written twice

@@ -169,6 +169,7 @@ struct TriangulationStats {
 struct Triangulation {
   std::vector<Tetrahedron> tetrahedra;  // finite, positively oriented, input point ids
   TriangulationStats stats;
+  std::vector<Point3> points;  // the input, handed back by the overload that takes it by move
 };
 
 // The input has no tetrahedralization (fewer than 4 distinct points, all coplanar) or a NaN or
@@ -181,6 +182,10 @@ class TriangulationError : public std::runtime_error {
 };
 
 Triangulation triangulate(const std::vector<Point3>& points, const TriangulateOptions& options);
+// The same on points the caller gives up: the engine scales and reorders them in place instead of
+// copying them (24 bytes a point less at the run's peak) and returns them unchanged in
+// Triangulation::points, also when it throws (then `points` keeps them).
+Triangulation triangulate(std::vector<Point3>&& points, const TriangulateOptions& options);
 
 // The stats and the options as one JSON object (the --stats output).
 std::string stats_json(const TriangulationStats& stats, const TriangulateOptions& options,
