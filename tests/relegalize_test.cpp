@@ -63,7 +63,7 @@ class Relegalize : public ::testing::Test {
     for (int attempt = 0; made < wanted && attempt < 100 * wanted; ++attempt) {
       const auto t = static_cast<TetId>(rng() % mesh->tets.size());
       const engine::Tet& tet = mesh->tets[t];
-      if (!mesh->tets.alive(t).load() || tet.is_infinite()) continue;
+      if (!mesh->tets.is_alive(t) || tet.is_infinite()) continue;
       const auto fresh = dt->flip_face(t, static_cast<int>(rng() % 4));
       if (fresh.empty()) continue;
       created.insert(created.end(), fresh.begin(), fresh.end());
@@ -110,7 +110,7 @@ TEST_F(Relegalize, MarksAboveTheLiveTetrahedraAreFollowedDown) {
   build("uniform", 500, 7);
   std::vector<TetId> marks;
   for (TetId t = 0; t < mesh->tets.size() && marks.empty(); ++t) {
-    if (!mesh->tets.alive(t).load() || mesh->tets[t].is_infinite()) continue;
+    if (!mesh->tets.is_alive(t) || mesh->tets[t].is_infinite()) continue;
     for (int f = 0; f < 4 && marks.empty(); ++f) marks = dt->flip_face(t, f);
   }
   ASSERT_FALSE(marks.empty());
@@ -127,7 +127,7 @@ TEST_F(Relegalize, MarksAboveTheLiveTetrahedraAreFollowedDown) {
   }
   ASSERT_TRUE(again);
   std::size_t dead = 0;
-  for (const TetId t : marks) dead += mesh->tets.alive(t).load() ? 0 : 1;
+  for (const TetId t : marks) dead += mesh->tets.is_alive(t) ? 0 : 1;
   ASSERT_GT(dead, 0U);
   ASSERT_GT(engine::validate(points, tets()).non_delaunay_faces, 0U);
   EXPECT_GT(dt->relegalize(marks, false), 0U);
@@ -156,7 +156,7 @@ TEST_F(Relegalize, HullFlipsAreRepaired) {
   for (int attempt = 0; made < 10 && attempt < 100000; ++attempt) {
     const auto t = static_cast<TetId>(rng() % mesh->tets.size());
     const engine::Tet& tet = mesh->tets[t];
-    if (!mesh->tets.alive(t).load() || !tet.is_infinite()) continue;
+    if (!mesh->tets.is_alive(t) || !tet.is_infinite()) continue;
     // A face between two infinite tetrahedra is a hull edge's: flipping it changes the hull.
     const int inf = tet.index_of(engine::kInfiniteVertex);
     const int f = static_cast<int>((static_cast<std::uint64_t>(inf) + 1 + rng() % 3) % 4);

@@ -118,7 +118,7 @@ struct BrokenMesh {
     int made = 0;
     for (int attempt = 0; made < wanted && attempt < 100000; ++attempt) {
       const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
-      if (!dt.mesh().tets.alive(t).load()) continue;
+      if (!dt.mesh().tets.is_alive(t)) continue;
       made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
     }
     return made;

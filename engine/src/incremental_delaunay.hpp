@@ -153,7 +153,7 @@ class IncrementalDelaunay {
           refused = true;
           break;
         }
-        if (mesh_.tets.alive(t).load(std::memory_order_acquire)) break;
+        if (mesh_.tets.is_alive(t, std::memory_order_acquire)) break;
         sync_->rollback();
         if (tries > 1000) {
           refused = true;
@@ -337,7 +337,7 @@ class IncrementalDelaunay {
     while (!stack_.empty()) {
       const TetId t = stack_.back();
       stack_.pop_back();
-      if (!mesh_.tets.alive(t).load(std::memory_order_acquire)) continue;
+      if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;
       const int ip = mesh_.tets[t].index_of(p);
       const Flip result = legalize_face(t, ip, flips);
       if (result == Flip::Exhausted) {
@@ -404,7 +404,7 @@ class IncrementalDelaunay {
   // Returns the new tetrahedra (empty when no flip exists there).
   std::vector<TetId> flip_face(TetId t, int f) {
     const Tet& tet = mesh_.tets[t];
-    if (!mesh_.tets.alive(t).load(std::memory_order_acquire)) return {};
+    if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) return {};
     if (tet.vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
       const FaceRef across = tet.neighbor[static_cast<std::size_t>(f)];
       t = ref_tet(across);
@@ -436,7 +436,7 @@ class IncrementalDelaunay {
       pending.pop_back();
       if (t >= seen.size() || seen[t] != 0) continue;
       seen[t] = 1;
-      if (mesh_.tets.alive(t).load(std::memory_order_acquire)) {
+      if (mesh_.tets.is_alive(t, std::memory_order_acquire)) {
         for (int f = 0; f < 4; ++f) faces.emplace_back(t, f);
         continue;
       }
@@ -454,7 +454,7 @@ class IncrementalDelaunay {
       auto [t, f] = faces.back();
       faces.pop_back();
       const Tet& tet = mesh_.tets[t];
-      if (!mesh_.tets.alive(t).load(std::memory_order_acquire)) continue;
+      if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;
       if (tet.vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
         // Test the face from the finite side (a face has at most one infinite apex).
         const FaceRef across = tet.neighbor[static_cast<std::size_t>(f)];

@@ -212,7 +212,7 @@ class OptimisticSync {
     if ((word.load(std::memory_order_relaxed) & LockTable::kLogged) != 0) return;
     word.store(self_ | LockTable::kLogged, std::memory_order_release);
     const Tet& tet = mesh_.tets[t];
-    Saved s{t, tet.neighbor, {}, mesh_.tets.alive(t).load(std::memory_order_relaxed)};
+    Saved s{t, tet.neighbor, {}, mesh_.tets.is_alive(t, std::memory_order_relaxed)};
     if (mesh_.tets.has_children()) {
       const auto& children = mesh_.tets.children(t);
       for (std::size_t i = 0; i < 4; ++i) s.child[i] = children[i].load(std::memory_order_relaxed);
@@ -262,13 +262,13 @@ class OptimisticSync {
         if (mesh_.tets.has_children()) {
           mesh_.tets.children(it->tet)[i].store(it->child[i], std::memory_order_relaxed);
         }
-      mesh_.tets.alive(it->tet).store(it->alive, std::memory_order_release);
+      mesh_.tets.set_alive(it->tet, it->alive, std::memory_order_release);
     }
     for (const TetId t : created_) {
       if (mesh_.tets.has_children()) {
         for (auto& c : mesh_.tets.children(t)) c.store(kNoTet, std::memory_order_relaxed);
       }
-      mesh_.tets.alive(t).store(false, std::memory_order_release);
+      mesh_.tets.set_alive(t, false, std::memory_order_release);
     }
     log_.clear();
     created_.clear();
@@ -300,7 +300,7 @@ class OptimisticSync {
       }
       if (refused) continue;  // burgled again (or a deadlock broken by someone else): repeat
       for (const TetId c : mine) {
-        if (!mesh_.tets.alive(c).load(std::memory_order_acquire)) {
+        if (!mesh_.tets.is_alive(c, std::memory_order_acquire)) {
           ++stats_.potential_problems;
           return Resume::Stop;
         }

@@ -232,7 +232,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   std::vector<TetId> live_marks;
   if (options.location == Location::Walk) {
     for (const TetId t : marks) {
-      if (mesh.tets.alive(t).load(std::memory_order_relaxed)) live_marks.push_back(t);
+      if (mesh.tets.is_alive(t, std::memory_order_relaxed)) live_marks.push_back(t);
     }
   }
   check.repair_flips =

@@ -74,7 +74,7 @@ class PointLocator {
     hint_ = kNoTet;
     if (recycle_ && shared_) {
       auto alive = [&](TetId t) {
-        return t != kNoTet && mesh_.tets.alive(t).load(std::memory_order_acquire);
+        return t != kNoTet && mesh_.tets.is_alive(t, std::memory_order_acquire);
       };
       // A hint that died meanwhile (the batch method's) gives way to this thread's own last
       // tetrahedron, which is near in space; a slot near in id is not.
@@ -82,14 +82,14 @@ class PointLocator {
       for (int attempt = 0; attempt < 64; ++attempt) {
         if (!alive(start)) start = live_near(start);
         const TetId t = walk(p, o, start);
-        if (t != kNoTet && mesh_.tets.alive(t).load(std::memory_order_acquire)) return t;
+        if (t != kNoTet && mesh_.tets.is_alive(t, std::memory_order_acquire)) return t;
         ++walk_fallbacks_;
         if (t != kNoTet) start = t;
       }
       return kNoTet;
     }
     if (recycle_) {
-      if (start == kNoTet || !mesh_.tets.alive(start).load(std::memory_order_relaxed)) {
+      if (start == kNoTet || !mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
         start = any_live_tetrahedron();
       }
       const TetId t = walk(p, o, start);
@@ -102,7 +102,7 @@ class PointLocator {
       TetId reached = walk(p, o, start);
       bool retry = false;
       if (reached != kNoTet) {
-        const bool alive = mesh_.tets.alive(reached).load(std::memory_order_acquire);
+        const bool alive = mesh_.tets.is_alive(reached, std::memory_order_acquire);
         const TetId t = descend(p, o, reached, retry, alive);
         if (!retry && t != kNoTet) return t;
       }
@@ -173,7 +173,7 @@ class PointLocator {
     const TetId top = near == kNoTet || near >= slots ? slots : near + 1;
     // Ids taken by other threads may lie in blocks not installed yet: those are skipped.
     auto alive = [&](TetId t) {
-      return mesh_.tets.has_block(t) && mesh_.tets.alive(t).load(std::memory_order_acquire);
+      return mesh_.tets.has_block(t) && mesh_.tets.is_alive(t, std::memory_order_acquire);
     };
     for (TetId t = top; t-- > 0;) {
       if (alive(t)) return t;
@@ -188,13 +188,13 @@ class PointLocator {
   // contains p by testing every one.
   TetId any_live_tetrahedron() const {
     for (TetId t = static_cast<TetId>(mesh_.tets.size()); t-- > 0;) {
-      if (mesh_.tets.alive(t).load(std::memory_order_relaxed)) return t;
+      if (mesh_.tets.is_alive(t, std::memory_order_relaxed)) return t;
     }
     return kNoTet;
   }
   TetId scan_for(VertexId p, std::array<int, 4>& o) {
     for (TetId t = 0; t < mesh_.tets.size(); ++t) {
-      if (mesh_.tets.alive(t).load(std::memory_order_relaxed) && geometry_.contains(t, p, o))
+      if (mesh_.tets.is_alive(t, std::memory_order_relaxed) && geometry_.contains(t, p, o))
         return t;
     }
     return kNoTet;
@@ -214,7 +214,7 @@ class PointLocator {
       }
     }
     std::uint64_t steps = 0;
-    while (t != kNoTet && !mesh_.tets.alive(t).load(std::memory_order_acquire)) {
+    while (t != kNoTet && !mesh_.tets.is_alive(t, std::memory_order_acquire)) {
       if (++steps > options_.max_location_steps) return kNoTet;
       if (!mesh_.tets.has_children()) {  // walk mode keeps no DAG to descend
         retry = true;

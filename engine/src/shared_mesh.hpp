@@ -54,7 +54,7 @@ struct SharedMesh {
     }
     auto kept = [&](TetId id) {
       const Tet& t = tets[id];
-      return tets.alive(id).load(std::memory_order_acquire) && !t.is_infinite() &&
+      return tets.is_alive(id, std::memory_order_acquire) && !t.is_infinite() &&
              t.vertex[0] < vertex_limit && t.vertex[1] < vertex_limit &&
              t.vertex[2] < vertex_limit && t.vertex[3] < vertex_limit;
     };

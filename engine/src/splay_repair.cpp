@@ -255,7 +255,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   std::vector<std::vector<TetId>> live_parts(static_cast<std::size_t>(parts));
   in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (mesh.tets.alive(static_cast<TetId>(i)).load(std::memory_order_acquire)) {
+      if (mesh.tets.is_alive(static_cast<TetId>(i), std::memory_order_acquire)) {
         live_parts[part].push_back(static_cast<TetId>(i));
       }
     }
@@ -322,7 +322,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // below it in the DAG, which for a mark made early is much of the mesh; the exact scan above
   // finds every non-Delaunay face among them anyway.)
   for (const TetId t : marks) {
-    if (t < slots && mesh.tets.alive(t).load(std::memory_order_acquire)) {
+    if (t < slots && mesh.tets.is_alive(t, std::memory_order_acquire)) {
       seed_quad(mesh.tets[t].vertex);
     }
   }
@@ -478,8 +478,8 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     mesh.tets[ref_tet(a)].neighbor[static_cast<std::size_t>(ref_face(a))] = b;
     mesh.tets[ref_tet(b)].neighbor[static_cast<std::size_t>(ref_face(b))] = a;
   }
-  for (const TetId t : dying) mesh.tets.alive(t).store(false, std::memory_order_release);
-  for (const TetId t : ids) mesh.tets.alive(t).store(true, std::memory_order_release);
+  for (const TetId t : dying) mesh.tets.set_alive(t, false, std::memory_order_release);
+  for (const TetId t : ids) mesh.tets.set_alive(t, true, std::memory_order_release);
   stats.tetrahedra_removed = dying.size();
   stats.tetrahedra_created = created.size();
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();

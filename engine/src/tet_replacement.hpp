@@ -232,7 +232,7 @@ class TetReplacement {
     // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
     for (const TetId o : scratch_old_) {
       if (recycle_) {
-        mesh_.tets.alive(o).store(false, std::memory_order_release);
+        mesh_.tets.set_alive(o, false, std::memory_order_release);
         slots_.retire(o);
         sync_.killed(o);
         continue;
@@ -242,12 +242,12 @@ class TetReplacement {
         for (std::size_t j = 0; j < count; ++j)
           children[j].store(ids[j], std::memory_order_release);
       }
-      mesh_.tets.alive(o).store(false, std::memory_order_release);
+      mesh_.tets.set_alive(o, false, std::memory_order_release);
       sync_.killed(o);
     }
     scratch_created_.assign(ids.begin(), ids.begin() + n);
     for (std::size_t j = 0; j < count; ++j) {
-      mesh_.tets.alive(ids[j]).store(true, std::memory_order_release);
+      mesh_.tets.set_alive(ids[j], true, std::memory_order_release);
     }
     return Replaced::Done;
   }
@@ -299,7 +299,7 @@ class TetReplacement {
     // A recycling engine keeps no history: the old slots are reused after this insertion.
     for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
       if (recycle_) {
-        mesh_.tets.alive(scratch_old_[r]).store(false, std::memory_order_release);
+        mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
         slots_.retire(scratch_old_[r]);
         sync_.killed(scratch_old_[r]);
         continue;
@@ -311,11 +311,11 @@ class TetReplacement {
               scratch_created_[j], std::memory_order_release);
         }
       }
-      mesh_.tets.alive(scratch_old_[r]).store(false, std::memory_order_release);
+      mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
       sync_.killed(scratch_old_[r]);
     }
     for (const TetId id : scratch_created_)
-      mesh_.tets.alive(id).store(true, std::memory_order_release);
+      mesh_.tets.set_alive(id, true, std::memory_order_release);
     return Replaced::Done;
   }
 

@@ -33,6 +33,9 @@ using FaceRef = std::uint32_t;  // 4 * tet + face
 
 inline constexpr VertexId kInfiniteVertex = 0xFFFFFFFFu;  // the symbolic vertex at infinity
 inline constexpr TetId kNoTet = 0xFFFFFFFFu;
+// The last vertex of a dead record where the store keeps no alive flags (TetStore::is_alive);
+// never a point's id (triangulate refuses inputs that reach it).
+inline constexpr VertexId kDeadVertex = 0xFFFFFFFEu;
 
 inline constexpr std::array<std::array<int, 3>, 4> kFaceVertex{
     {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
@@ -48,7 +51,7 @@ inline int ref_face(FaceRef r) {
 }
 
 // The hot record: 32 bytes, two to a cache line. Whether it is alive, its lock word and its DAG
-// children are kept beside it by the store (TetStore::alive, lock_word, children), each only
+// children are kept beside it by the store (TetStore::is_alive, lock_word, children), each only
 // where the mode needs it.
 struct Tet {
   std::array<VertexId, 4> vertex{};
@@ -121,16 +124,26 @@ class TetStore {
   [[nodiscard]] bool has_lock_words() const { return lock_words_; }
 
   // Whether slot t holds a live tetrahedron. Dead tetrahedra are DAG history (or, in walk mode,
-  // free slots); release on death and birth, acquire on reading. One byte per slot, in an array
-  // after the block's slots (a byte in the slot would cost the alignment of the next record).
-  std::atomic<bool>& alive(TetId t) {
-    return *std::launder(reinterpret_cast<std::atomic<bool>*>(block_of(t) + alive_offset() +
-                                                              (t & (kBlockSize - 1))));
+  // free slots).
+  // - Where other threads read the mesh (lock words) or dead records are read (DAG children): a
+  //   byte per slot, in an array after the block's slots (a byte in the slot would cost the
+  //   alignment of the next record); release on death and birth, acquire on reading.
+  // - A sequential walk keeps neither: nobody reads a dead record there (the walk's remembered
+  //   start and the legalization's stack ask first), so death writes kDeadVertex into the
+  //   record's last vertex, and birth is writing the record. 32 bytes a slot instead of 33.
+  [[nodiscard]] bool is_alive(TetId t, std::memory_order order = std::memory_order_acquire) const {
+    if (alive_in_record_) return (*this)[t].vertex[3] != kDeadVertex;
+    return alive_flag(t).load(order);
   }
-  const std::atomic<bool>& alive(TetId t) const {
-    return *std::launder(reinterpret_cast<const std::atomic<bool>*>(block_of(t) + alive_offset() +
-                                                                    (t & (kBlockSize - 1))));
+  void set_alive(TetId t, bool alive, std::memory_order order = std::memory_order_release) {
+    if (alive_in_record_) {
+      if (!alive) (*this)[t].vertex[3] = kDeadVertex;
+      assert(!alive || (*this)[t].vertex[3] != kDeadVertex);  // born by writing the record
+      return;
+    }
+    alive_flag(t).store(alive, order);
   }
+  [[nodiscard]] bool alive_in_record() const { return alive_in_record_; }
   // Owner of t's lock (thread id + 1), 0 when free. Only where has_lock_words().
   std::atomic<std::uint32_t>& lock_word(TetId t) {
     assert(lock_words_);
@@ -142,8 +155,8 @@ class TetStore {
     return *std::launder(reinterpret_cast<const Tet*>(slot(t)));
   }
 
-  // Reserves a fresh slot (single writer in the sequential engine; the parallel methods take
-  // slots with the atomic counter).
+  // Reserves a fresh slot, dead until written and set alive (single writer in the sequential
+  // engine; the parallel methods take slots with the atomic counter).
   TetId allocate() {
     const std::size_t t = size_.fetch_add(1, std::memory_order_relaxed);
     if (t >= capacity_) {
@@ -200,32 +213,46 @@ class TetStore {
     }
   }
 
-  // Blocks are mapped from the system directly (2.1 MiB for a sequential walk, 3.3 with DAG
+  // Blocks are mapped from the system directly (2 MiB for a sequential walk, 3.3 with DAG
   // children and lock words), not from the heap: a
   // released block goes back to the system at once, which is what lets take_finite_tetrahedra
   // build the output in the memory the store gives up. (malloc would serve them from its heap
   // once a larger block had been freed, and keep them there.)
-  // A block: kBlockSize slots (stride_ bytes each), then their alive flags (1 byte each).
+  // A block: kBlockSize slots (stride_ bytes each), then their alive flags (1 byte each) unless
+  // the records carry them.
   [[nodiscard]] char* block_of(TetId t) const {
     return blocks_[t >> kBlockBits].load(std::memory_order_acquire);
   }
   [[nodiscard]] char* slot(TetId t) const { return block_of(t) + (t & (kBlockSize - 1)) * stride_; }
+  std::atomic<bool>& alive_flag(TetId t) const {
+    return *std::launder(reinterpret_cast<std::atomic<bool>*>(block_of(t) + alive_offset() +
+                                                              (t & (kBlockSize - 1))));
+  }
   [[nodiscard]] std::size_t alive_offset() const { return kBlockSize * stride_; }
-  [[nodiscard]] std::size_t block_bytes() const { return alive_offset() + kBlockSize; }
+  [[nodiscard]] std::size_t block_bytes() const {
+    return alive_offset() + (alive_in_record_ ? 0 : kBlockSize);
+  }
   [[nodiscard]] std::size_t children_offset() const {
     return sizeof(Tet) + (lock_words_ ? sizeof(std::uint32_t) : 0);
   }
-  void set_stride() { stride_ = children_offset() + (children_ ? sizeof(Children) : 0); }
+  void set_stride() {
+    stride_ = children_offset() + (children_ ? sizeof(Children) : 0);
+    alive_in_record_ = !children_ && !lock_words_;
+  }
   char* new_block() const {
     void* memory =
         mmap(nullptr, block_bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (memory == MAP_FAILED) throw std::bad_alloc();
     char* block = static_cast<char*>(memory);
     for (std::size_t i = 0; i < kBlockSize; ++i) {
-      new (block + i * stride_) Tet();
+      Tet* record = new (block + i * stride_) Tet();
       if (lock_words_) new (block + i * stride_ + sizeof(Tet)) std::atomic<std::uint32_t>(0);
       if (children_) new (block + i * stride_ + children_offset()) Children{};
-      new (block + alive_offset() + i) std::atomic<bool>(false);
+      if (alive_in_record_) {
+        record->vertex[3] = kDeadVertex;
+      } else {
+        new (block + alive_offset() + i) std::atomic<bool>(false);
+      }
     }
     return block;
   }
@@ -241,6 +268,7 @@ class TetStore {
   std::atomic<std::size_t> size_{0};
   bool children_ = true;
   bool lock_words_ = true;
+  bool alive_in_record_ = false;  // neither lock words nor children: a sequential walk
   std::size_t stride_ = sizeof(Tet) + sizeof(std::uint32_t) + sizeof(Children);  // per slot
   std::size_t capacity_ = kMaxTets;
 };
