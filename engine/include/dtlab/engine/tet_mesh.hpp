@@ -166,6 +166,7 @@ class TetStore {
                                              : " (the capacity asked for)"));
     }
     ensure_block(t >> kBlockBits);
+    if (alive_in_record_) (*this)[static_cast<TetId>(t)].vertex[3] = kDeadVertex;
     return static_cast<TetId>(t);
   }
   // A run of up to `wanted` consecutive fresh slots, [first, first + count): one atomic step for
@@ -177,6 +178,9 @@ class TetStore {
     count = std::min(wanted, capacity_ - first);
     for (std::size_t b = first >> kBlockBits; b <= (first + count - 1) >> kBlockBits; ++b) {
       ensure_block(b);
+    }
+    for (std::size_t t = first; alive_in_record_ && t < first + count; ++t) {
+      (*this)[static_cast<TetId>(t)].vertex[3] = kDeadVertex;
     }
     return static_cast<TetId>(first);
   }
@@ -244,15 +248,15 @@ class TetStore {
         mmap(nullptr, block_bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (memory == MAP_FAILED) throw std::bad_alloc();
     char* block = static_cast<char*>(memory);
+    // Records alone (a sequential walk) are implicit-lifetime aggregates on zeroed pages: they
+    // are marked dead as they are handed out (allocate), so that a block's pages are touched only
+    // as far as it is used.
+    if (alive_in_record_) return block;
     for (std::size_t i = 0; i < kBlockSize; ++i) {
-      Tet* record = new (block + i * stride_) Tet();
+      new (block + i * stride_) Tet();
       if (lock_words_) new (block + i * stride_ + sizeof(Tet)) std::atomic<std::uint32_t>(0);
       if (children_) new (block + i * stride_ + children_offset()) Children{};
-      if (alive_in_record_) {
-        record->vertex[3] = kDeadVertex;
-      } else {
-        new (block + alive_offset() + i) std::atomic<bool>(false);
-      }
+      new (block + alive_offset() + i) std::atomic<bool>(false);
     }
     return block;
   }
