@@ -99,6 +99,54 @@ TEST(Swaps, GridDataNeedsS22AndS44) {
   EXPECT_TRUE(engine::validate(points, result.tetrahedra).valid());
 }
 
+// Every split and flip links the new tetrahedra directly from their sources (2->6, k->2k, S44
+// and S22 through TetReplacement::link_from_sources); the validator rebuilds adjacency from the
+// output and would not see a wrong reference, so the store's own references are checked here:
+// across every face of every live tetrahedron, the neighbour points back and has the same three
+// vertices. Grid points on the lattice make every kind of split and flip.
+TEST(Swaps, NeighbourReferencesStayMutual) {
+  for (const auto location : {engine::Location::Walk, engine::Location::Dag}) {
+    const auto points = generators::generate("grid", 512, 1).points;
+    TriangulateOptions options;
+    options.location = location;
+    TriangulationStats stats;
+    Dt dt(points, options, stats);
+    std::vector<std::uint32_t> order(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    const auto first = *engine::find_simplex(points, order).simplex;
+    dt.start(first[0], first[1], first[2], first[3]);
+    for (const std::uint32_t v : order) {
+      if (std::find(first.begin(), first.end(), v) == first.end()) dt.insert(v);
+    }
+    EXPECT_GT(stats.flips.s44, 0u);
+    EXPECT_GT(stats.flips.s22, 0u);
+    const auto& tets = dt.mesh().tets;
+    std::size_t live = 0;
+    for (engine::TetId t = 0; t < tets.size(); ++t) {
+      if (!tets.is_alive(t)) continue;
+      ++live;
+      for (int f = 0; f < 4; ++f) {
+        const engine::FaceRef across = tets[t].neighbor[static_cast<std::size_t>(f)];
+        const engine::TetId other = engine::ref_tet(across);
+        ASSERT_LT(other, tets.size());
+        ASSERT_TRUE(tets.is_alive(other)) << t << " " << f;
+        EXPECT_EQ(tets[other].neighbor[static_cast<std::size_t>(engine::ref_face(across))],
+                  engine::face_ref(t, f));
+        auto face = [&](engine::TetId id, int g) {
+          std::vector<engine::VertexId> v;
+          for (int i = 0; i < 4; ++i) {
+            if (i != g) v.push_back(tets[id].vertex[static_cast<std::size_t>(i)]);
+          }
+          std::sort(v.begin(), v.end());
+          return v;
+        };
+        EXPECT_EQ(face(t, f), face(other, engine::ref_face(across)));
+      }
+    }
+    EXPECT_GT(live, points.size());
+  }
+}
+
 TEST(BadInput, NoTetrahedralizationIsAnError) {
   TriangulateOptions options;
   EXPECT_THROW(engine::triangulate({}, options), engine::TriangulationError);

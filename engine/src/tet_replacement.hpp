@@ -67,6 +67,7 @@ class TetReplacement {
   // (only possible with an inexact kernel's contradictory signs) nothing changes and the result
   // is false. The new ids land in scratch_created_.
   Replaced replace() {
+    if (link_from_sources()) return commit_replacement();
     auto is_old = [&](TetId t) {
       return std::find(scratch_old_.begin(), scratch_old_.end(), t) != scratch_old_.end();
     };
@@ -320,6 +321,101 @@ class TetReplacement {
   }
 
  private:
+  [[nodiscard]] int old_index(TetId t) const {
+    for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
+      if (scratch_old_[r] == t) return static_cast<int>(r);
+    }
+    return -1;
+  }
+
+  // replace()'s direct path: fills matched_ from the sources alone, without matching keys, when
+  // every new tetrahedron is a copy of an old one (push_replaced). New tetrahedron j is old s with
+  // position a replaced by v. Its face a is s's face a, on the region's boundary. Its face g != a
+  // is shared with the copy of s that replaced position g, if there is one (at that copy's face
+  // a); otherwise with the copy of s's neighbour s2 across face g that replaced the same vertex
+  // s[a] (at its face across from s), or, when s2 has no such copy and its vertex across from s
+  // is v itself (S44: the two old tetrahedra that only give their apex), with s2's own face
+  // opposite s[a], on the boundary. On a mesh whose references are mutual (the engine's writes
+  // keep them so, with any kernel) these are the right faces; what is checked is what a broken
+  // neighbourhood could still get wrong: v is not already a vertex of s, links between new
+  // tetrahedra are mutual, and the boundary faces taken over are all of the region's, each once.
+  // Anything else is left to the generic matching, which decides as before.
+  bool link_from_sources() {
+    const std::size_t n = scratch_new_.size();
+    const std::size_t old_count = scratch_old_.size();
+    copy_of_.assign(4 * old_count, -1);
+    source_old_.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto [source, position] = scratch_source_[j];
+      const int r = source == kNoTet ? -1 : old_index(source);
+      if (r < 0) return false;
+      int& copy = copy_of_[4 * static_cast<std::size_t>(r) + static_cast<std::size_t>(position)];
+      if (copy >= 0 ||
+          mesh_.tets[source].index_of(scratch_new_[j][static_cast<std::size_t>(position)]) >= 0) {
+        return false;
+      }
+      copy = static_cast<int>(j);
+      source_old_[j] = r;
+    }
+    matched_.resize(4 * n);
+    boundary_used_.assign(4 * old_count, 0);
+    // New face `self` takes over the outside of old r's face f.
+    auto on_boundary = [&](std::size_t self, std::size_t r, int face) {
+      const FaceRef out = mesh_.tets[scratch_old_[r]].neighbor[static_cast<std::size_t>(face)];
+      char& used = boundary_used_[4 * r + static_cast<std::size_t>(face)];
+      if (used != 0 || old_index(ref_tet(out)) >= 0) return false;
+      used = 1;
+      matched_[self] = {out, false, true};
+      return true;
+    };
+    for (std::size_t j = 0; j < n; ++j) {
+      const int a = scratch_source_[j].second;
+      const auto r = static_cast<std::size_t>(source_old_[j]);
+      const Tet& st = mesh_.tets[scratch_old_[r]];
+      for (int g = 0; g < 4; ++g) {
+        const std::size_t self = 4 * j + static_cast<std::size_t>(g);
+        if (g == a) {
+          if (!on_boundary(self, r, a)) return false;
+          continue;
+        }
+        if (const int k = copy_of_[4 * r + static_cast<std::size_t>(g)]; k >= 0) {
+          matched_[self] = {static_cast<FaceRef>(4 * k + a), true, true};
+          continue;
+        }
+        const FaceRef across = st.neighbor[static_cast<std::size_t>(g)];
+        const int r2 = old_index(ref_tet(across));
+        if (r2 < 0) return false;
+        const Tet& second = mesh_.tets[ref_tet(across)];
+        const int a2 = second.index_of(st.vertex[static_cast<std::size_t>(a)]);
+        if (a2 < 0) return false;
+        const int k = copy_of_[4 * static_cast<std::size_t>(r2) + static_cast<std::size_t>(a2)];
+        if (k >= 0) {
+          matched_[self] = {static_cast<FaceRef>(4 * k + ref_face(across)), true, true};
+          continue;
+        }
+        if (second.vertex[static_cast<std::size_t>(ref_face(across))] !=
+                scratch_new_[j][static_cast<std::size_t>(a)] ||
+            !on_boundary(self, static_cast<std::size_t>(r2), a2)) {
+          return false;
+        }
+      }
+    }
+    for (std::size_t self = 0; self < 4 * n; ++self) {
+      const FaceMatch m = matched_[self];
+      if (m.is_new && (!matched_[m.ref].is_new || matched_[m.ref].ref != self)) return false;
+    }
+    for (std::size_t r = 0; r < old_count; ++r) {
+      for (int f = 0; f < 4; ++f) {
+        const FaceRef out = mesh_.tets[scratch_old_[r]].neighbor[static_cast<std::size_t>(f)];
+        if (boundary_used_[4 * r + static_cast<std::size_t>(f)] == 0 &&
+            old_index(ref_tet(out)) < 0) {
+          return false;  // a boundary face nobody took over
+        }
+      }
+    }
+    return true;
+  }
+
   // A face's vertex set as two integers (sorted ids): cheap to compare.
   struct FaceKey {
     std::uint64_t high;
@@ -361,6 +457,12 @@ class TetReplacement {
   std::vector<OpenFace> open_faces_;
   std::vector<FaceMatch> matched_;
   std::vector<FaceRef> claimed_;
+  // link_from_sources's scratch: copy_of_[4 r + position] is the new tetrahedron made from old r
+  // by replacing `position` (-1: none); source_old_[j] is new j's source as an index of
+  // scratch_old_; boundary_used_[4 r + f]: old r's face f was taken over.
+  std::vector<int> copy_of_;
+  std::vector<int> source_old_;
+  std::vector<char> boundary_used_;
 };
 
 }  // namespace dtlab::engine
