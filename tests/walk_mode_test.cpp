@@ -31,7 +31,7 @@ std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
 
 // The curve visits every cell of the 2^bits grid once, and consecutive cells share a face.
 TEST(InsertionOrder, HilbertKeysWalkTheGridThroughFaces) {
-  for (unsigned bits = 1; bits <= 4; ++bits) {
+  for (unsigned bits = 1; bits <= 6; ++bits) {
     const std::uint32_t side = 1u << bits;
     std::vector<std::array<std::uint32_t, 3>> by_key(static_cast<std::size_t>(side) * side * side,
                                                      {side, side, side});
@@ -53,6 +53,26 @@ TEST(InsertionOrder, HilbertKeysWalkTheGridThroughFaces) {
       EXPECT_EQ(distance, 1) << "keys " << k - 1 << " and " << k << ", bits " << bits;
     }
   }
+}
+
+// The sort along the curve is stable: equal points (equal keys) stay in the random order, so the
+// order depends on the seed and the points alone.
+TEST(InsertionOrder, EqualKeysKeepTheRandomOrder) {
+  const auto points = generators::generate("duplicates", 6000, 2).points;
+  const auto random = engine::random_order(points.size(), 5);
+  std::vector<std::size_t> position(points.size());
+  for (std::size_t i = 0; i < random.size(); ++i) position[random[i]] = i;
+  auto brio = random;
+  engine::brio_hilbert_order(points, brio);
+  std::size_t ties = 0;
+  for (std::size_t i = 1; i < brio.size(); ++i) {
+    const bool same_round = (i >= points.size() / 2) == (i - 1 >= points.size() / 2);
+    if (same_round && points[brio[i]] == points[brio[i - 1]]) {
+      ++ties;
+      EXPECT_LT(position[brio[i - 1]], position[brio[i]]) << i;
+    }
+  }
+  EXPECT_GT(ties, 100u);
 }
 
 // BRIO keeps the rounds of the random order (as sets) and sorts each along the curve.

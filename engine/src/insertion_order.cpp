@@ -1,6 +1,7 @@
 #include "insertion_order.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -22,32 +23,39 @@ std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
 // coordinates first (the loop over q), then Gray-decoding the bit columns, leaves the "transposed"
 // index, whose bits interleaved axis by axis are the distance along the curve.
 std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, unsigned bits) {
+  // Branch-free: each bit's test is a mask (0 or all ones), since the bits of random points are
+  // as unpredictable as a branch can get (the branches cost more than the rest of the order).
   std::uint32_t axis[3] = {x, y, z};
-  const std::uint32_t top = 1u << (bits - 1);
-  for (std::uint32_t q = top; q > 1; q >>= 1) {
-    const std::uint32_t lower = q - 1;
+  for (unsigned level = bits - 1; level > 0; --level) {
+    const std::uint32_t lower = (1u << level) - 1;
     for (std::uint32_t& a : axis) {
-      if ((a & q) != 0) {
-        axis[0] ^= lower;  // reflect the lower bits of the first axis
-      } else {
-        const std::uint32_t differ = (axis[0] ^ a) & lower;  // exchange with the first axis
-        axis[0] ^= differ;
-        a ^= differ;
-      }
+      const std::uint32_t set = 0u - ((a >> level) & 1u);
+      // set: reflect the lower bits of the first axis; clear: exchange them with this axis
+      // (nothing when this axis is the first).
+      const std::uint32_t differ = (axis[0] ^ a) & lower & ~set;
+      axis[0] ^= (lower & set) | differ;
+      a ^= differ;
     }
   }
   axis[1] ^= axis[0];
   axis[2] ^= axis[1];
   std::uint32_t flip = 0;
-  for (std::uint32_t q = top; q > 1; q >>= 1) {
-    if ((axis[2] & q) != 0) flip ^= q - 1;
+  for (unsigned level = bits - 1; level > 0; --level) {
+    flip ^= ((1u << level) - 1) & (0u - ((axis[2] >> level) & 1u));
   }
   for (std::uint32_t& a : axis) a ^= flip;
-  std::uint64_t key = 0;
-  for (int b = static_cast<int>(bits) - 1; b >= 0; --b) {
-    for (const std::uint32_t a : axis) key = (key << 1) | ((a >> b) & 1u);
-  }
-  return key;
+  // Interleave, most significant first, axis 0 before 1 before 2: bit b of axis k lands at
+  // 3 b + 2 - k. spread() moves bit b of a 21-bit value to 3 b by halving steps.
+  auto spread = [](std::uint32_t v) {
+    std::uint64_t s = v & 0x1FFFFFu;
+    s = (s | (s << 32)) & 0x001F00000000FFFFull;
+    s = (s | (s << 16)) & 0x001F0000FF0000FFull;
+    s = (s | (s << 8)) & 0x100F00F00F00F00Full;
+    s = (s | (s << 4)) & 0x10C30C30C30C30C3ull;
+    s = (s | (s << 2)) & 0x1249249249249249ull;
+    return s;
+  };
+  return (spread(axis[0]) << 2) | (spread(axis[1]) << 1) | spread(axis[2]);
 }
 
 namespace {
@@ -62,15 +70,49 @@ std::uint32_t cell(double c, double lo, double extent) {
       std::clamp(scaled, 0.0, static_cast<double>((1u << kBits) - 1)));
 }
 
+// Sorts items[0, n) by key, stably, with `scratch` of the same size: least significant digit
+// first, 8 bits a pass (256 counters stay in L1), one counting pass for all eight digits, and a
+// digit that is the same in every key is skipped. The same order as std::stable_sort by key.
+void stable_sort_by_key(std::pair<std::uint64_t, std::uint32_t>* items,
+                        std::pair<std::uint64_t, std::uint32_t>* scratch, std::size_t n) {
+  constexpr int kDigits = 8;
+  std::vector<std::array<std::size_t, 256>> count(kDigits);
+  for (auto& c : count) c.fill(0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int d = 0; d < kDigits; ++d) ++count[d][(items[i].first >> (8 * d)) & 0xFF];
+  }
+  auto* from = items;
+  auto* to = scratch;
+  for (int d = 0; d < kDigits; ++d) {
+    auto& c = count[static_cast<std::size_t>(d)];
+    if (std::any_of(c.begin(), c.end(), [n](std::size_t k) { return k == n; })) continue;
+    std::size_t sum = 0;
+    for (auto& k : c) {
+      const std::size_t here = k;
+      k = sum;
+      sum += here;
+    }
+    for (std::size_t i = 0; i < n; ++i) to[c[(from[i].first >> (8 * d)) & 0xFF]++] = from[i];
+    std::swap(from, to);
+  }
+  if (from != items) std::copy(from, from + n, items);
+}
+
 }  // namespace
 
 void brio_hilbert_order(const std::vector<predicates::Point3>& points,
                         std::vector<std::uint32_t>& ids) {
   if (ids.empty()) return;
+  // ids is a random order: every point read misses the cache unless it is asked for ahead.
+  auto prefetch = [&](std::size_t i) {
+    if (i < ids.size()) __builtin_prefetch(&points[ids[i]]);
+  };
+  constexpr std::size_t kAhead = 16;
   predicates::Point3 lo = points[ids[0]];
   predicates::Point3 hi = lo;
-  for (const std::uint32_t v : ids) {
-    const predicates::Point3& p = points[v];
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    prefetch(i + kAhead);
+    const predicates::Point3& p = points[ids[i]];
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
@@ -80,19 +122,20 @@ void brio_hilbert_order(const std::vector<predicates::Point3>& points,
       2 * std::max({hi.x / 2 - lo.x / 2, hi.y / 2 - lo.y / 2, hi.z / 2 - lo.z / 2});
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
+    prefetch(i + kAhead);
     const predicates::Point3& p = points[ids[i]];
     keyed[i] = {hilbert_key(cell(p.x, lo.x, extent), cell(p.y, lo.y, extent),
                             cell(p.z, lo.z, extent), kBits),
                 ids[i]};
   }
   // Rounds from the end: [n/2, n), [n/4, n/2), ... and a first round [0, end) of at most
-  // kFirstRound points. Equal keys keep the random order (ties are broken by position).
+  // kFirstRound points. Equal keys keep the random order (ties are broken by position: the sort
+  // is stable).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch(keyed.size());
   std::size_t end = keyed.size();
   while (end > 0) {
     const std::size_t begin = end <= kFirstRound ? 0 : end / 2;
-    std::stable_sort(keyed.begin() + static_cast<std::ptrdiff_t>(begin),
-                     keyed.begin() + static_cast<std::ptrdiff_t>(end),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    stable_sort_by_key(keyed.data() + begin, scratch.data() + begin, end - begin);
     end = begin;
   }
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = keyed[i].second;
