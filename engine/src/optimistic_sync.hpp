@@ -13,6 +13,7 @@
 // write still happens under a lock its writer holds, so the mesh stays consistent.
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <cstdint>
 #include <mutex>
@@ -212,7 +213,12 @@ class OptimisticSync {
     if ((word.load(std::memory_order_relaxed) & LockTable::kLogged) != 0) return;
     word.store(self_ | LockTable::kLogged, std::memory_order_release);
     const Tet& tet = mesh_.tets[t];
-    Saved s{t, tet.neighbor, {}, mesh_.tets.is_alive(t, std::memory_order_relaxed)};
+    // Only live tetrahedra are written: each is the located leaf (checked after locking), an old
+    // one of the replacement, or a neighbour of a locked live one (whoever kills it rewrites that
+    // reference, under the lock). So the flag need not be read (its own cache line): rollback
+    // makes every logged one alive again.
+    assert(mesh_.tets.is_alive(t, std::memory_order_relaxed));
+    Saved s{t, tet.neighbor, {}};
     if (mesh_.tets.has_children()) {
       const auto& children = mesh_.tets.children(t);
       for (std::size_t i = 0; i < 4; ++i) s.child[i] = children[i].load(std::memory_order_relaxed);
@@ -262,7 +268,7 @@ class OptimisticSync {
         if (mesh_.tets.has_children()) {
           mesh_.tets.children(it->tet)[i].store(it->child[i], std::memory_order_relaxed);
         }
-      mesh_.tets.set_alive(it->tet, it->alive, std::memory_order_release);
+      mesh_.tets.set_alive(it->tet, true, std::memory_order_release);
     }
     for (const TetId t : created_) {
       if (mesh_.tets.has_children()) {
@@ -324,7 +330,6 @@ class OptimisticSync {
     TetId tet;
     std::array<FaceRef, 4> neighbor;
     std::array<TetId, 4> child;
-    bool alive;
   };
 
   // Withdraws this thread's registered wait; false when a burglar got there first.
