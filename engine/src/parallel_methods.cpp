@@ -321,14 +321,12 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   const Distribution distribution = effective_distribution(options);
   const bool dynamic = distribution == Distribution::Dynamic;
   const bool walk = options.location == Location::Walk;
-  // Walk mode: each thread inserts its share in its own BRIO and Hilbert order (one shared order
-  // for the dynamic distribution).
+  // Walk mode: each thread inserts its share in its own BRIO and Hilbert order, which it makes
+  // itself when it starts (in parallel); one shared order for the dynamic distribution.
   if (walk && dynamic) brio_hilbert_order(points, order);
-  auto parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
-                       : distribute(points, order, distribution, threads);
-  if (walk) {
-    for (auto& part : parts) brio_hilbert_order(points, part);
-  }
+  const bool batch_method = options.method == Method::Batch;  // splits among its locators
+  auto parts = dynamic || batch_method ? std::vector<std::vector<std::uint32_t>>{}
+                                       : distribute(points, order, distribution, threads);
   std::mutex global;  // pessimistic: the one critical section
   // A stall is a failure; its limit grows with the work, to a minute at most (an insertion takes
   // micro- to milliseconds, so 10 s without one finishing anywhere is no slow run).
@@ -359,6 +357,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   auto worker_body = [&](int i) {
     const auto index = static_cast<std::size_t>(i);
     ThreadStats& counters = stats.threads[index];
+    if (walk && !dynamic) brio_hilbert_order(points, parts[index]);
     WorkSource work(dynamic ? nullptr : &parts[index], dynamic ? &shared_index : nullptr, &order);
     SlotReclaimer reclaimer(epochs, i);
     SlotReclaimer* reuse = walk ? &reclaimer : nullptr;
@@ -430,15 +429,13 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     std::uint64_t empty_waits = 0;
     auto locator_parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
                                  : distribute(points, order, distribution, locators);
-    if (walk) {
-      for (auto& part : locator_parts) brio_hilbert_order(points, part);
-    }
     std::vector<std::thread> pool;
     std::vector<TriangulationStats> locator_stats(static_cast<std::size_t>(locators));
     for (int i = 0; i < locators; ++i) {
       pool.emplace_back([&, i] {
         const auto index = static_cast<std::size_t>(i);
         try {
+          if (walk && !dynamic) brio_hilbert_order(points, locator_parts[index]);
           SlotReclaimer reclaimer(epochs, i + 1);
           IncrementalDelaunay<K, NoSync> dt(mesh, options, locator_stats[index], no_sync,
                                             walk ? &reclaimer : nullptr);
