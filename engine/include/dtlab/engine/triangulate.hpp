@@ -184,7 +184,8 @@ class TriangulationError : public std::runtime_error {
 Triangulation triangulate(const std::vector<Point3>& points, const TriangulateOptions& options);
 // The same on points the caller gives up: the engine scales and reorders them in place instead of
 // copying them (24 bytes a point less at the run's peak) and returns them unchanged in
-// Triangulation::points, also when it throws (then `points` keeps them).
+// Triangulation::points. When it throws, `points` holds them as given (unless memory runs out
+// while they are put back: the reordering is undone through a second array).
 Triangulation triangulate(std::vector<Point3>&& points, const TriangulateOptions& options);
 
 // The stats and the options as one JSON object (the --stats output).
