@@ -540,7 +540,7 @@ class IncrementalDelaunay {
     replacement_.push_replaced(t, edge[1], y, -1);
     replacement_.push_replaced(t3, e0, y, -1);
     replacement_.push_replaced(t3, e1, y, -1);
-    const Flip result = finish_flip(replacement_.replace());
+    const Flip result = finish_flip(replacement_.replace_flip44(t, t2, t3, t4, ip, m, edge, y));
     if (result != Flip::Done) return result;
     if (vm == kInfiniteVertex || w == kInfiniteVertex) {
       ++stats_.flips.s22;

@@ -253,6 +253,76 @@ class TetReplacement {
     return Replaced::Done;
   }
 
+  // S44 (S22 on the hull), the most frequent flip on grids, written directly after flip44 has
+  // pushed its four copies: t, t2 across t's face ip (apex y), t3 across t's face m and t4 across
+  // t3's face opposite p (apex y) lie around the edge t[edge[0]] t[edge[1]]; new s (s = 0, 1) is t
+  // with t[edge[s]] replaced by y and new 2 + s is t3 with the same vertex replaced. These are
+  // link_from_sources' rules with every lookup known: each new one's face at its replaced
+  // position is its source's, on the boundary; the two copies of one source share a face; the
+  // copies of t and t3 that replaced the same vertex share the face across t's face m; and the
+  // face of a copy of t across t's face ip is t2's face opposite the replaced vertex (of a copy of
+  // t3, across t3's face opposite p, t4's), on the boundary. The neighbourhood is checked as in
+  // replace_known (t and t3 glued both ways, t2's and t4's apex y, y in neither t nor t3, no
+  // boundary face that belongs to an old tetrahedron); otherwise replace() decides.
+  Replaced replace_flip44(TetId t, TetId t2, TetId t3, TetId t4, int ip, int m,
+                          const std::array<int, 2>& edge, VertexId y) {
+    const Tet& first = mesh_.tets[t];
+    const Tet& third = mesh_.tets[t3];
+    const FaceRef to2 = first.neighbor[static_cast<std::size_t>(ip)];
+    const FaceRef to3 = first.neighbor[static_cast<std::size_t>(m)];
+    const int w_at = ref_face(to3);
+    const int p_at = third.index_of(first.vertex[static_cast<std::size_t>(ip)]);
+    if (ref_tet(to2) != t2 || ref_tet(to3) != t3 || p_at < 0 ||
+        third.neighbor[static_cast<std::size_t>(w_at)] != face_ref(t, m) ||
+        first.index_of(y) >= 0 || third.index_of(y) >= 0) {
+      return replace();
+    }
+    const FaceRef to4 = third.neighbor[static_cast<std::size_t>(p_at)];
+    const Tet& second = mesh_.tets[t2];
+    const Tet& fourth = mesh_.tets[t4];
+    if (ref_tet(to4) != t4 || second.vertex[static_cast<std::size_t>(ref_face(to2))] != y ||
+        fourth.vertex[static_cast<std::size_t>(ref_face(to4))] != y) {
+      return replace();
+    }
+    auto is_old = [&](FaceRef r) {
+      const TetId o = ref_tet(r);
+      return o == t || o == t2 || o == t3 || o == t4;
+    };
+    matched_.resize(16);
+    for (std::size_t s = 0; s < 2; ++s) {
+      const int e = edge[s];
+      const int other = edge[1 - s];
+      const VertexId v = first.vertex[static_cast<std::size_t>(e)];
+      const int e3 = third.index_of(v);
+      const int other3 = third.index_of(first.vertex[static_cast<std::size_t>(other)]);
+      const int e2 = second.index_of(v);
+      const int e4 = fourth.index_of(v);
+      if (e3 < 0 || other3 < 0 || e2 < 0 || e4 < 0 ||
+          ((1 << e3) | (1 << other3) | (1 << w_at) | (1 << p_at)) != 15) {
+        return replace();  // every face of each new tetrahedron is set below, once
+      }
+      const std::array<FaceRef, 4> outside{first.neighbor[static_cast<std::size_t>(e)],
+                                           second.neighbor[static_cast<std::size_t>(e2)],
+                                           third.neighbor[static_cast<std::size_t>(e3)],
+                                           fourth.neighbor[static_cast<std::size_t>(e4)]};
+      for (const FaceRef r : outside) {
+        if (is_old(r)) return replace();
+      }
+      const std::size_t from_first = 4 * s;
+      const std::size_t from_third = 4 * (2 + s);
+      auto new_face = [](std::size_t j, int f) { return static_cast<FaceRef>(4 * j + f); };
+      matched_[from_first + static_cast<std::size_t>(e)] = {outside[0], false, true};
+      matched_[from_first + static_cast<std::size_t>(other)] = {new_face(1 - s, e), true, true};
+      matched_[from_first + static_cast<std::size_t>(ip)] = {outside[1], false, true};
+      matched_[from_first + static_cast<std::size_t>(m)] = {new_face(2 + s, w_at), true, true};
+      matched_[from_third + static_cast<std::size_t>(e3)] = {outside[2], false, true};
+      matched_[from_third + static_cast<std::size_t>(other3)] = {new_face(3 - s, e3), true, true};
+      matched_[from_third + static_cast<std::size_t>(w_at)] = {new_face(s, m), true, true};
+      matched_[from_third + static_cast<std::size_t>(p_at)] = {outside[3], false, true};
+    }
+    return commit_replacement();
+  }
+
   Replaced commit_replacement() {
     // Every tetrahedron written below is locked first: the outside neighbours get new back
     // references (the old ones are locked already), and the undo log sees each before its first
