@@ -120,75 +120,88 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   std::uint64_t burglaries = 0;
   std::uint64_t damaged = 0;       // non-Delaunay faces the flips had to repair (grid)
   std::uint64_t repair_flips = 0;  // and the flips they made
+  auto run = [&](const std::string& family, const std::vector<Point3>& points,
+                 const std::vector<engine::Tetrahedron>& expected, int threads,
+                 engine::Repair repair, std::uint64_t seed) {
+    const bool flips_suffice = family == "grid";
+    engine::TriangulateOptions options;
+    options.method = Method::Burglary;
+    options.threads = threads;
+    options.stress = true;
+    options.repair = repair;
+    options.seed = seed;
+    const auto result = engine::triangulate(points, options);
+    const auto report = engine::validate(points, result.tetrahedra);
+    const engine::PostCheck& check = result.stats.post_check;
+    const std::string what = family + " " + std::to_string(threads) + " repair " +
+                             engine::to_string(repair) + " seed " + std::to_string(seed);
+    EXPECT_TRUE(report.mesh_consistent()) << what << report.json();
+    EXPECT_TRUE(check.mesh_consistent) << what;
+    EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
+    // The post-check's final verdict is the validator's on the mesh returned.
+    EXPECT_EQ(check.non_delaunay_faces_after, report.non_delaunay_faces) << what;
+    EXPECT_EQ(check.reflex_boundary_edges_after, report.reflex_boundary_edges) << what;
+    EXPECT_EQ(check.mesh_consistent_after, report.mesh_consistent()) << what;
+    EXPECT_EQ(check.non_delaunay_after, report.non_delaunay_faces + report.reflex_boundary_edges)
+        << what;
+    switch (repair) {
+      case engine::Repair::None:
+        EXPECT_FALSE(check.repaired) << what;
+        EXPECT_EQ(check.non_delaunay_faces, report.non_delaunay_faces) << what;
+        break;
+      case engine::Repair::Flips:
+        EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
+        if (flips_suffice) {
+          EXPECT_EQ(check.non_delaunay_after_flips, 0u) << what;
+          damaged += check.non_delaunay_faces;
+          repair_flips += check.repair_flips;
+        }
+        // Delaunay means the unique (perturbed) Delaunay tetrahedralization.
+        if (check.non_delaunay_after == 0) {
+          EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+        }
+        break;
+      case engine::Repair::Splay:
+        // Star splaying always ends in the Delaunay mesh, without a rebuild.
+        EXPECT_TRUE(result.stats.splay.done) << what;
+        EXPECT_FALSE(check.rebuilt) << what;
+        EXPECT_TRUE(report.valid()) << what << report.json();
+        EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+        break;
+      case engine::Repair::Rebuild:
+        EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
+        if (flips_suffice) {
+          EXPECT_FALSE(check.rebuilt) << what;
+          damaged += check.non_delaunay_faces;
+          repair_flips += check.repair_flips;
+        }
+        EXPECT_TRUE(report.valid()) << what << report.json();
+        EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+        break;
+    }
+    for (const auto& t : result.stats.threads) burglaries += t.burglaries;
+  };
   for (const std::string family :
        {"uniform", "grid", "sphere", "cospherical", "near-duplicates", "duplicates", "planes"}) {
     const auto points = generators::generate(family, n, 5).points;
     const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
-    const bool flips_suffice = family == "grid";
     for (const int threads : {2, 4}) {
       for (const auto repair : {engine::Repair::None, engine::Repair::Flips,
                                 engine::Repair::Rebuild, engine::Repair::Splay}) {
-        engine::TriangulateOptions options;
-        options.method = Method::Burglary;
-        options.threads = threads;
-        options.stress = true;
-        options.repair = repair;
-        const auto result = engine::triangulate(points, options);
-        const auto report = engine::validate(points, result.tetrahedra);
-        const engine::PostCheck& check = result.stats.post_check;
-        const std::string what =
-            family + " " + std::to_string(threads) + " repair " + engine::to_string(repair);
-        EXPECT_TRUE(report.mesh_consistent()) << what << report.json();
-        EXPECT_TRUE(check.mesh_consistent) << what;
-        EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
-        // The post-check's final verdict is the validator's on the mesh returned.
-        EXPECT_EQ(check.non_delaunay_faces_after, report.non_delaunay_faces) << what;
-        EXPECT_EQ(check.reflex_boundary_edges_after, report.reflex_boundary_edges) << what;
-        EXPECT_EQ(check.mesh_consistent_after, report.mesh_consistent()) << what;
-        EXPECT_EQ(check.non_delaunay_after,
-                  report.non_delaunay_faces + report.reflex_boundary_edges)
-            << what;
-        switch (repair) {
-          case engine::Repair::None:
-            EXPECT_FALSE(check.repaired) << what;
-            EXPECT_EQ(check.non_delaunay_faces, report.non_delaunay_faces) << what;
-            break;
-          case engine::Repair::Flips:
-            EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
-            if (flips_suffice) {
-              EXPECT_EQ(check.non_delaunay_after_flips, 0u) << what;
-              damaged += check.non_delaunay_faces;
-              repair_flips += check.repair_flips;
-            }
-            // Delaunay means the unique (perturbed) Delaunay tetrahedralization.
-            if (check.non_delaunay_after == 0) {
-              EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
-            }
-            break;
-          case engine::Repair::Splay:
-            // Star splaying always ends in the Delaunay mesh, without a rebuild.
-            EXPECT_TRUE(result.stats.splay.done) << what;
-            EXPECT_FALSE(check.rebuilt) << what;
-            EXPECT_TRUE(report.valid()) << what << report.json();
-            EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
-            break;
-          case engine::Repair::Rebuild:
-            EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
-            if (flips_suffice) {
-              EXPECT_FALSE(check.rebuilt) << what;
-              damaged += check.non_delaunay_faces;
-              repair_flips += check.repair_flips;
-            }
-            EXPECT_TRUE(report.valid()) << what << report.json();
-            EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
-            break;
-        }
-        for (const auto& t : result.stats.threads) burglaries += t.burglaries;
+        run(family, points, expected, threads, repair, 1);
       }
     }
   }
   // Oversubscribed threads with delays while locks are held: deadlocks do happen, and the flips
-  // on grid data had something to repair (a run leaves faces about 3 times in 4).
+  // on grid data must have had something to repair, or the checks of their result above are
+  // empty. A grid run leaves faces about 5 times in 6 (release build, 2 and 4 threads); the 4
+  // runs above all left none once under AddressSanitizer beside another test, so more seeds
+  // (each checked in full) are run until one does, up to 16.
+  const auto grid = generators::generate("grid", n, 5).points;
+  const auto grid_expected = canonical(engine::triangulate(grid, {}).tetrahedra);
+  for (std::uint64_t seed = 2; damaged == 0 && seed <= 17; ++seed) {
+    run("grid", grid, grid_expected, 4, engine::Repair::Flips, seed);
+  }
   EXPECT_GT(burglaries, 0u);
   EXPECT_GT(damaged, 0u);
   EXPECT_GT(repair_flips, 0u);
