@@ -281,9 +281,9 @@ const char* to_string(Repair r) {
 namespace {
 
 // The run on the caller's points, which it scales and reorders in place (no second copy at the
-// run's peak) and hands back as they were, on every path out; unless `as_given` (the same points,
-// untouched) is there, when they are a scratch copy and the duplicates' names and the auxiliary
-// run's reference come from `as_given` instead.
+// run's peak) and puts back as they were, on every path out. When `as_given` (the same points,
+// untouched) is there, `points` is a scratch copy: it is not put back after a finished run, and
+// the duplicates' names and the auxiliary run's reference come from `as_given`.
 Triangulation triangulate_in_place(std::vector<Point3>& points, const TriangulateOptions& options,
                                    const std::vector<Point3>* as_given) {
   const auto start = Clock::now();

@@ -167,9 +167,7 @@ Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& plann
     const std::string& distribution = mapped[run_column("distribution")];
     const std::string suffix = "/" + distribution;
     if (mapped[run_column("engine")] == "dtlab" && mapped[run_column("method")] != "sequential" &&
-        !distribution.empty() &&
-        (key.size() < suffix.size() ||
-         key.compare(key.size() - suffix.size(), suffix.size(), suffix) != 0)) {
+        !distribution.empty() && !key.ends_with(suffix)) {
       key += suffix;
     }
     if (mapped[run_column("status")] != "ok") {

@@ -143,7 +143,6 @@ class TetStore {
     }
     alive_flag(t).store(alive, order);
   }
-  [[nodiscard]] bool alive_in_record() const { return alive_in_record_; }
   // Owner of t's lock (thread id + 1), 0 when free. Only where has_lock_words().
   std::atomic<std::uint32_t>& lock_word(TetId t) {
     assert(lock_words_);
