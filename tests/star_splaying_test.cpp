@@ -52,7 +52,8 @@ TEST(VertexStar, OfferingEveryPointGivesTheDelaunayStar) {
       engine::VertexStar star;
       star.start(points, v, abc[0], abc[1], abc[2]);
       std::vector<Quad> removed;
-      for (VertexId w = 0; w < points.size(); ++w) star.offer(points, w, removed);
+      engine::StarScratch scratch;
+      for (VertexId w = 0; w < points.size(); ++w) star.offer(points, w, removed, scratch);
       std::vector<io::Tetrahedron> finite;
       for (const Quad& q : star.tetrahedra()) {
         EXPECT_NE(std::find(q.begin(), q.end(), v), q.end());
@@ -93,6 +94,24 @@ TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
       EXPECT_EQ(canonical(repaired), expected) << family << " from " << name;
       EXPECT_TRUE(engine::validate(points, repaired).valid()) << family << " from " << name;
     }
+  }
+}
+
+// Equal points are one vertex of the repair: copies of generated points, and a point written with
+// zeros of either sign (-0.0 == +0.0, though their bits differ).
+TEST(SplayTetrahedra, EqualPointsAreOneVertex) {
+  auto points = generators::generate("uniform", 60, 5).points;
+  points.push_back({0.0, 0.0, 0.0});
+  points.push_back({-0.0, 0.0, -0.0});
+  points.push_back({0.0, -0.0, 0.0});
+  points.push_back(points[3]);
+  points.push_back(points[10]);
+  const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+  engine::SplayStats stats;
+  const auto repaired = canonical(engine::repair(points, {}, stats));
+  EXPECT_EQ(repaired, expected);
+  for (const auto& t : repaired) {
+    for (const VertexId v : t) EXPECT_LE(v, 60U) << "a later copy of an equal point is a vertex";
   }
 }
 

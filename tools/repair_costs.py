@@ -14,8 +14,8 @@ non-Delaunay faces the repair found (every run of both tables):
    found, stars, validity; beside it the paper's flips with their reported rebuild
    (`--repair=rebuild`) on the same seed.
 
-Usage: tools/repair_costs.py N SEEDS [--families a,b] [--threads 2,4,8] [--plot FILE]
-       [--dtlab PATH]
+Usage: tools/repair_costs.py N SEEDS [--families a,b] [--threads 2,4,8] [--location dag|walk]
+       [--plot FILE] [--dtlab PATH]
 """
 import argparse
 import json
@@ -25,8 +25,9 @@ import statistics
 import subprocess
 
 
-def run(dtlab, args):
-    out = subprocess.run([dtlab, "triangulate"] + args + ["--validate", "--stats", "-"],
+def run(dtlab, location, args):
+    out = subprocess.run([dtlab, "triangulate"] + args + ["--location", location, "--validate",
+                                                          "--stats", "-"],
                          check=True, capture_output=True, text=True).stdout
     return json.loads(out)
 
@@ -52,6 +53,7 @@ def main():
     parser.add_argument("--families", default="uniform,normal,cluster,grid,sphere,cospherical,"
                         "near-duplicates,duplicates,planes")
     parser.add_argument("--threads", default="2,4,8")
+    parser.add_argument("--location", default="dag", choices=["dag", "walk"])
     parser.add_argument("--plot", default="")
     parser.add_argument("--dtlab", default="build/release/cli/dtlab")
     args = parser.parse_args()
@@ -59,10 +61,10 @@ def main():
     thread_counts = [int(t) for t in args.threads.split(",")]
     points = []  # (non-Delaunay faces found, repair seconds, label) for the plot
 
-    print("`tools/repair_costs.py %d %d --families %s --threads %s` on %s, %d logical CPUs "
-          "(thread counts above that are oversubscribed); medians over seeds 1..%d\n"
-          % (args.n, args.seeds, args.families, args.threads, cpu_model(), os.cpu_count(),
-             args.seeds))
+    print("`tools/repair_costs.py %d %d --families %s --threads %s --location %s` on %s, %d "
+          "logical CPUs (thread counts above that are oversubscribed); medians over seeds 1..%d\n"
+          % (args.n, args.seeds, args.families, args.threads, args.location, cpu_model(),
+             os.cpu_count(), args.seeds))
     print("### Fast kernel, then star splaying, against adaptive predicates throughout "
           "(sequential)\n")
     print("| family | adaptive s | fast + repair s | ratio | repair s | non-Delaunay faces found "
@@ -72,9 +74,9 @@ def main():
         spec = "%s:%d" % (family, args.n)
         adaptive, fast = [], []
         for seed in range(1, args.seeds + 1):
-            fast.append(run(args.dtlab, [spec, "--seed", str(seed), "--predicates", "fast",
-                                         "--repair"]))
-            adaptive.append(run(args.dtlab, [spec, "--seed", str(seed)]))
+            fast.append(run(args.dtlab, args.location,
+                            [spec, "--seed", str(seed), "--predicates", "fast", "--repair"]))
+            adaptive.append(run(args.dtlab, args.location, [spec, "--seed", str(seed)]))
         for r in fast:
             points.append((r["splay"]["non_delaunay_faces"], r["splay"]["seconds"], "fast"))
         a = med([r["seconds"]["total"] for r in adaptive])
@@ -100,8 +102,8 @@ def main():
             for seed in range(1, args.seeds + 1):
                 common = [spec, "--seed", str(seed), "--method", "burglary", "--threads",
                           str(threads)]
-                splay.append(run(args.dtlab, common + ["--repair"]))
-                flips.append(run(args.dtlab, common + ["--repair=rebuild"]))
+                splay.append(run(args.dtlab, args.location, common + ["--repair"]))
+                flips.append(run(args.dtlab, args.location, common + ["--repair=rebuild"]))
             for r in splay:
                 points.append((r["splay"]["non_delaunay_faces"], r["splay"]["seconds"],
                                "burglary %d" % threads))
@@ -129,7 +131,8 @@ def main():
         ax.set_yscale("log")
         ax.set_xlabel("non-Delaunay faces found")
         ax.set_ylabel("star splaying seconds")
-        ax.set_title("repair cost, %d points, %s" % (args.n, cpu_model()[:40]), fontsize=9)
+        ax.set_title("repair cost, %d points, %s mode, %s" % (args.n, args.location,
+                                                             cpu_model()[:40]), fontsize=9)
         ax.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "dtlab/generators/random.hpp"
+#include "radix_sort.hpp"
 
 namespace dtlab::engine {
 
@@ -68,34 +69,6 @@ std::uint32_t cell(double c, double lo, double extent) {
   const double scaled = (c - lo) / extent * static_cast<double>((1u << kBits) - 1);
   return static_cast<std::uint32_t>(
       std::clamp(scaled, 0.0, static_cast<double>((1u << kBits) - 1)));
-}
-
-// Sorts items[0, n) by key, stably, with `scratch` of the same size: least significant digit
-// first, 8 bits a pass (256 counters stay in L1), one counting pass for all eight digits, and a
-// digit that is the same in every key is skipped. The same order as std::stable_sort by key.
-void stable_sort_by_key(std::pair<std::uint64_t, std::uint32_t>* items,
-                        std::pair<std::uint64_t, std::uint32_t>* scratch, std::size_t n) {
-  constexpr int kDigits = 8;
-  std::vector<std::array<std::size_t, 256>> count(kDigits);
-  for (auto& c : count) c.fill(0);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int d = 0; d < kDigits; ++d) ++count[d][(items[i].first >> (8 * d)) & 0xFF];
-  }
-  auto* from = items;
-  auto* to = scratch;
-  for (int d = 0; d < kDigits; ++d) {
-    auto& c = count[static_cast<std::size_t>(d)];
-    if (std::any_of(c.begin(), c.end(), [n](std::size_t k) { return k == n; })) continue;
-    std::size_t sum = 0;
-    for (auto& k : c) {
-      const std::size_t here = k;
-      k = sum;
-      sum += here;
-    }
-    for (std::size_t i = 0; i < n; ++i) to[c[(from[i].first >> (8 * d)) & 0xFF]++] = from[i];
-    std::swap(from, to);
-  }
-  if (from != items) std::copy(from, from + n, items);
 }
 
 }  // namespace

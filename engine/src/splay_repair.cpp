@@ -1,6 +1,7 @@
 #include "splay_repair.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -10,6 +11,7 @@
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/repair.hpp"
 #include "dtlab/predicates/kernels.hpp"
+#include "radix_sort.hpp"
 #include "star_splaying.hpp"
 
 namespace dtlab::engine {
@@ -88,30 +90,61 @@ class NearGrid {
   std::vector<VertexId> members_;
 };
 
+// 32 bits of a hash of a point's coordinates (-0.0 read as +0.0, since the two are equal): equal
+// points hash alike. A multiply-xorshift mix of the three bit patterns.
+std::uint64_t coordinate_hash(const Point3& p) {
+  auto bits = [](double c) { return std::bit_cast<std::uint64_t>(c == 0.0 ? 0.0 : c); };
+  auto mix = [](std::uint64_t h) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdULL;
+    h ^= h >> 33;
+    return h;
+  };
+  const std::uint64_t h = mix(mix(mix(bits(p.x)) ^ bits(p.y)) ^ bits(p.z));
+  return h >> 32;  // a 32-bit key: the radix sort skips the four zero digits
+}
+
 // canonical[x]: the one index that stands for all the points equal to point x in the result:
 // the lowest index among those that `is_vertex` (the engine keeps whichever duplicate it met
-// first), else the lowest index.
+// first), else the lowest index. Equal points are found by sorting the indices by a hash of the
+// coordinates (linear time, stable: each run of equal hashes keeps its indices increasing), then
+// comparing exactly inside each run (two different points with one hash only make a run longer).
 template <class IsVertex>
 std::vector<VertexId> canonical_points(const std::vector<Point3>& points, IsVertex is_vertex) {
-  std::vector<VertexId> order(points.size());
-  std::iota(order.begin(), order.end(), 0U);
-  std::sort(order.begin(), order.end(), [&](VertexId a, VertexId b) {
-    return predicates::lexicographically_less(points[a], points[b]) ||
-           (points[a] == points[b] && a < b);
-  });
-  std::vector<VertexId> canonical(points.size());
-  for (std::size_t i = 0; i < order.size();) {
-    std::size_t j = i;
-    VertexId chosen = order[i];
-    bool found = false;
-    for (; j < order.size() && points[order[j]] == points[order[i]]; ++j) {
-      if (!found && is_vertex(order[j])) {
-        chosen = order[j];
-        found = true;
-      }
-    }
-    for (std::size_t k = i; k < j; ++k) canonical[order[k]] = chosen;
+  const std::size_t n = points.size();
+  std::vector<KeyedId> keyed(n);
+  for (std::size_t i = 0; i < n; ++i)
+    keyed[i] = {coordinate_hash(points[i]), static_cast<VertexId>(i)};
+  {
+    std::vector<KeyedId> scratch(n);
+    stable_sort_by_key(keyed.data(), scratch.data(), n);
+  }
+  std::vector<VertexId> canonical(n);
+  std::vector<VertexId> run;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && keyed[j].first == keyed[i].first) ++j;
+    run.clear();
+    for (std::size_t k = i; k < j; ++k) run.push_back(keyed[k].second);
     i = j;
+    if (run.size() > 1) {
+      std::stable_sort(run.begin(), run.end(), [&](VertexId a, VertexId b) {
+        return predicates::lexicographically_less(points[a], points[b]);
+      });
+    }
+    for (std::size_t a = 0; a < run.size();) {
+      std::size_t b = a;
+      VertexId chosen = run[a];
+      bool found = false;
+      for (; b < run.size() && points[run[b]] == points[run[a]]; ++b) {
+        if (!found && is_vertex(run[b])) {
+          chosen = run[b];
+          found = true;
+        }
+      }
+      for (std::size_t k = a; k < b; ++k) canonical[run[k]] = chosen;
+      a = b;
+    }
   }
   return canonical;
 }
@@ -284,7 +317,20 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
             if (v != kInfiniteVertex) found.to_seed.push_back(v);
           }
         };
+        // Each neighbour record is a cache miss (its slot is anywhere in the store): they are
+        // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
+        // the misses overlap instead of queueing one behind the other.
+        constexpr std::size_t kRecordsAhead = 16;
+        constexpr std::size_t kNeighboursAhead = 8;
         for (std::size_t k = begin; k < end; ++k) {
+          if (k + kRecordsAhead < end)
+            __builtin_prefetch(&mesh.tets[scan_order[k + kRecordsAhead]]);
+          if (k + kNeighboursAhead < end) {
+            const TetId ahead = scan_order[k + kNeighboursAhead];
+            for (const FaceRef n : mesh.tets[ahead].neighbor) {
+              if (ref_tet(n) > ahead) __builtin_prefetch(&mesh.tets[ref_tet(n)]);
+            }
+          }
           const TetId i = scan_order[k];
           const Tet& t = mesh.tets[i];
           if (!t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],

@@ -88,7 +88,7 @@ void StarSplayer::activate(VertexId x) {
     if (y == x) continue;
     ++counts_.offers;
     removed_.clear();
-    if (star_of(x).offer(points_, y, removed_)) ++counts_.changes;
+    if (star_of(x).offer(points_, y, removed_, scratch_)) ++counts_.changes;
   }
   enqueue(x);
 }
@@ -105,7 +105,7 @@ void StarSplayer::offer(VertexId to, VertexId w) {
   if (w == to) return;
   ++counts_.offers;
   removed_.clear();
-  if (!star_of(to).offer(points_, w, removed_)) return;
+  if (!star_of(to).offer(points_, w, removed_, scratch_)) return;
   ++counts_.changes;
   enqueue(to);
   // Stars that still hold a tetrahedron `to` dropped now disagree with it.
@@ -116,15 +116,19 @@ void StarSplayer::offer(VertexId to, VertexId w) {
   }
 }
 
-bool StarSplayer::mesh_has(VertexId x, const Quad& sorted) {
-  std::vector<Quad> around;
-  mesh_.tetrahedra_of(x, around);
-  return std::any_of(around.begin(), around.end(),
-                     [&](const Quad& q) { return sorted_quad(q) == sorted; });
-}
-
 void StarSplayer::check(VertexId v) {
   const std::vector<Quad> quads = star_of(v).tetrahedra();  // a copy: offers change the star
+  // The mesh's tetrahedra at v, sorted: whether the mesh at another vertex u of one of v's
+  // tetrahedra holds it is whether the mesh at v does (the tetrahedron contains both), so v's
+  // list answers for every u without reading u's.
+  std::vector<Quad> around;
+  mesh_.tetrahedra_of(v, around);
+  std::vector<Quad> mesh_keys(around.size());
+  std::transform(around.begin(), around.end(), mesh_keys.begin(), sorted_quad);
+  auto mesh_has = [&](const Quad& key) {
+    return std::any_of(mesh_keys.begin(), mesh_keys.end(),
+                       [&](const Quad& m) { return same_quad(m, key); });
+  };
   std::vector<VertexId> link;
   for (const Quad& q : quads) {
     const Quad key = sorted_quad(q);
@@ -132,7 +136,7 @@ void StarSplayer::check(VertexId v) {
     for (const VertexId u : q) {
       if (u == v || u == kInfiniteVertex) continue;
       if (!active(u)) {
-        if (mesh_has(u, key)) continue;  // the mesh at u agrees
+        if (mesh_has(key)) continue;  // the mesh at u agrees
         activate(u);
       }
       if (star_of(u).has(key)) continue;
@@ -154,8 +158,6 @@ void StarSplayer::check(VertexId v) {
   }
   // The seam: the mesh's tetrahedra at v that reach an inactive vertex must be in v's star, or
   // that vertex's star (the mesh's) disagrees with v's: activate it.
-  std::vector<Quad> around;
-  mesh_.tetrahedra_of(v, around);
   for (const Quad& s : around) {
     bool reaches_inactive = false;
     for (const VertexId y : s) reaches_inactive |= y != kInfiniteVertex && !active(y);

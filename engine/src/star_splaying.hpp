@@ -58,7 +58,6 @@ class StarSplayer {
   VertexStar& star_of(VertexId x) { return stars_[static_cast<std::size_t>(slot_[x])]; }
   void offer(VertexId to, VertexId w);
   void enqueue(VertexId x);
-  bool mesh_has(VertexId x, const Quad& sorted);
   void check(VertexId v);
 
   const std::vector<predicates::Point3>& points_;
@@ -73,6 +72,7 @@ class StarSplayer {
   std::vector<char> queued_;
   SplayCounts counts_;
   std::vector<Quad> removed_;  // scratch
+  StarScratch scratch_;
 };
 
 }  // namespace dtlab::engine

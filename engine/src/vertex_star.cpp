@@ -41,37 +41,79 @@ void VertexStar::start(const std::vector<predicates::Point3>& points, VertexId v
   }
   known_ = {a, b, c};
   std::sort(known_.begin(), known_.end());
-  keys_.clear();
-  for (const Quad& q : quads_) keys_.push_back(sorted_quad(q));
+  make_keys();
 }
 
 bool VertexStar::knows(VertexId w) const {
   return std::binary_search(known_.begin(), known_.end(), w);
 }
 
+int VertexStar::cone_of(const std::vector<predicates::Point3>& points, VertexId w) const {
+  auto finite = [](const Quad& q) {
+    return std::find(q.begin(), q.end(), kInfiniteVertex) == q.end();
+  };
+  std::size_t i = 0;
+  while (i < quads_.size() && !finite(quads_[i])) ++i;
+  if (i == quads_.size()) return kUndecided;  // never: the star spans 3D from its start
+  // A visibility walk over the cones: leave through a face (through the centre) that has w's
+  // direction strictly on its outer side. The finite cones cover the tangent cone at the centre
+  // of the hull of what it knows, which is convex: leaving it means no finite cone holds w. A
+  // walk in a triangulation that is not Delaunay may cycle, hence the bound.
+  for (std::size_t step = 0; step <= quads_.size(); ++step) {
+    const Quad& q = quads_[i];
+    int exit = -1;
+    bool tie = false;
+    for (std::size_t k = 0; k < 4 && exit < 0; ++k) {
+      const std::size_t j = (k + step) & 3;  // a varying first face, against cycles
+      if (q[j] == center_) continue;
+      Quad r = q;
+      r[j] = w;
+      const int side = Exact::orient3d(points[r[0]], points[r[1]], points[r[2]], points[r[3]]);
+      if (side < 0) exit = static_cast<int>(j);
+      tie |= side == 0;
+    }
+    if (exit < 0) return tie ? kUndecided : static_cast<int>(i);
+    i = static_cast<std::size_t>(across_[i][static_cast<std::size_t>(exit)]);
+    if (!finite(quads_[i])) return kOutside;
+  }
+  return kUndecided;
+}
+
 bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w,
-                       std::vector<Quad>& removed) {
+                       std::vector<Quad>& removed, StarScratch& scratch) {
+  std::vector<char>& conflict = scratch.conflict;
+  std::vector<char>& visited = scratch.visited;
+  std::vector<int>& stack = scratch.stack;
+  std::vector<int>& remap = scratch.remap;
   if (w == center_ || w == kInfiniteVertex || knows(w)) return false;
   known_.insert(std::lower_bound(known_.begin(), known_.end(), w), w);
   const std::size_t n = quads_.size();
   // The tetrahedra w conflicts with form a disk of the link whose interior holds w's direction
   // from the centre (w becomes a vertex of the link, its fan replacing the disk). So one test
   // decides: the tetrahedron whose closed cone at the centre holds that direction (cheap orient3d
-  // tests) conflicts with w, or nothing does. Outside every finite cone the direction leaves the
-  // hull of what the centre knows, beyond a hull face at the centre: an infinite tetrahedron's.
+  // tests, found by a walk) conflicts with w, or nothing does. Outside every finite cone the
+  // direction leaves the hull of what the centre knows, beyond a hull face at the centre: an
+  // infinite tetrahedron's.
   int start = -1;
   bool held = false;
-  for (std::size_t i = 0; i < n && !held; ++i) {
-    const Quad& q = quads_[i];
-    if (std::find(q.begin(), q.end(), kInfiniteVertex) != q.end()) continue;
+  const int cone = cone_of(points, w);
+  if (cone >= 0) {
     held = true;
-    for (std::size_t j = 0; j < 4 && held; ++j) {
-      if (q[j] == center_) continue;
-      Quad r = q;
-      r[j] = w;  // w on the inner side of the face opposite q[j], or on it
-      held = Exact::orient3d(points[r[0]], points[r[1]], points[r[2]], points[r[3]]) >= 0;
+    if (in_conflict<Exact>(points, quads_[static_cast<std::size_t>(cone)], w)) start = cone;
+  } else if (cone == kUndecided) {
+    // A tie or a long walk: the first finite cone that holds the direction, in order.
+    for (std::size_t i = 0; i < n && !held; ++i) {
+      const Quad& q = quads_[i];
+      if (std::find(q.begin(), q.end(), kInfiniteVertex) != q.end()) continue;
+      held = true;
+      for (std::size_t j = 0; j < 4 && held; ++j) {
+        if (q[j] == center_) continue;
+        Quad r = q;
+        r[j] = w;  // w on the inner side of the face opposite q[j], or on it
+        held = Exact::orient3d(points[r[0]], points[r[1]], points[r[2]], points[r[3]]) >= 0;
+      }
+      if (held && in_conflict<Exact>(points, q, w)) start = static_cast<int>(i);
     }
-    if (held && in_conflict<Exact>(points, q, w)) start = static_cast<int>(i);
   }
   for (std::size_t i = 0; i < n && !held && start < 0; ++i) {
     const Quad& q = quads_[i];
@@ -80,69 +122,67 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
   }
   if (start < 0) return false;
   // The rest of the disk: a search over the link from there.
-  conflict_.assign(n, 0);
-  visited_.assign(n, 0);
-  stack_.assign(1, start);
-  conflict_[static_cast<std::size_t>(start)] = 1;
-  visited_[static_cast<std::size_t>(start)] = 1;
-  while (!stack_.empty()) {
-    const auto i = static_cast<std::size_t>(stack_.back());
-    stack_.pop_back();
+  conflict.assign(n, 0);
+  visited.assign(n, 0);
+  stack.assign(1, start);
+  conflict[static_cast<std::size_t>(start)] = 1;
+  visited[static_cast<std::size_t>(start)] = 1;
+  while (!stack.empty()) {
+    const auto i = static_cast<std::size_t>(stack.back());
+    stack.pop_back();
     for (std::size_t j = 0; j < 4; ++j) {
       if (quads_[i][j] == center_) continue;
       const auto next = static_cast<std::size_t>(across_[i][j]);
-      if (visited_[next] != 0) continue;
-      visited_[next] = 1;
+      if (visited[next] != 0) continue;
+      visited[next] = 1;
       if (in_conflict<Exact>(points, quads_[next], w)) {
-        conflict_[next] = 1;
-        stack_.push_back(static_cast<int>(next));
+        conflict[next] = 1;
+        stack.push_back(static_cast<int>(next));
       }
     }
   }
 
   // Kept quads first, in order; then one new quad per horizon face: the conflict quad with the
   // vertex across the horizon replaced by w (same orientation, as in Bowyer-Watson).
-  remap_.assign(n, -1);
-  std::vector<Quad> quads;
-  std::vector<std::array<int, 4>> across;
+  remap.assign(n, -1);
+  std::vector<Quad>& quads = scratch.next_quads;
+  std::vector<std::array<int, 4>>& across = scratch.next_across;
+  quads.clear();
+  across.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    if (conflict_[i] != 0) continue;
-    remap_[i] = static_cast<int>(quads.size());
+    if (conflict[i] != 0) continue;
+    remap[i] = static_cast<int>(quads.size());
     quads.push_back(quads_[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (conflict_[i] != 0) continue;
+    if (conflict[i] != 0) continue;
     std::array<int, 4> a = across_[i];
     for (int& x : a) {
       if (x >= 0)
-        x = conflict_[static_cast<std::size_t>(x)] != 0 ? -2 : remap_[static_cast<std::size_t>(x)];
+        x = conflict[static_cast<std::size_t>(x)] != 0 ? -2 : remap[static_cast<std::size_t>(x)];
     }
     across.push_back(a);
   }
-  struct Open {
-    VertexId key;  // the face's vertex other than the centre and w
-    int quad;
-    int face;
-  };
-  std::vector<Open> open;
+  std::vector<StarScratch::OpenFace>& open = scratch.open;
+  open.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    if (conflict_[i] == 0) continue;
+    if (conflict[i] == 0) continue;
     removed.push_back(quads_[i]);
     for (std::size_t j = 0; j < 4; ++j) {
       if (quads_[i][j] == center_) continue;
       const int outside = across_[i][j];
-      if (conflict_[static_cast<std::size_t>(outside)] != 0) continue;
+      if (conflict[static_cast<std::size_t>(outside)] != 0) continue;
       Quad q = quads_[i];
       q[j] = w;
       const int id = static_cast<int>(quads.size());
       quads.push_back(q);
       across.push_back({-1, -1, -1, -1});
       // The horizon face: link both ways (the kept quad's face is opposite its vertex not in q).
-      across.back()[j] = remap_[static_cast<std::size_t>(outside)];
+      across.back()[j] = remap[static_cast<std::size_t>(outside)];
       const Quad& kept = quads_[static_cast<std::size_t>(outside)];
       for (std::size_t g = 0; g < 4; ++g) {
         if (std::find(q.begin(), q.end(), kept[g]) == q.end()) {
-          across[static_cast<std::size_t>(remap_[static_cast<std::size_t>(outside)])][g] = id;
+          across[static_cast<std::size_t>(remap[static_cast<std::size_t>(outside)])][g] = id;
         }
       }
       // The faces through the centre and w: keyed by their third vertex, matched in pairs below.
@@ -154,7 +194,9 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
       }
     }
   }
-  std::sort(open.begin(), open.end(), [](const Open& x, const Open& y) { return x.key < y.key; });
+  std::sort(
+      open.begin(), open.end(),
+      [](const StarScratch::OpenFace& x, const StarScratch::OpenFace& y) { return x.key < y.key; });
   for (std::size_t i = 0; i < open.size(); i += 2) {
     // The horizon is one cycle of v's link, so each of its vertices is on exactly two new faces.
     if (i + 1 >= open.size() || open[i].key != open[i + 1].key) {
@@ -172,15 +214,20 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
       }
     }
   }
-  quads_ = std::move(quads);
-  across_ = std::move(across);
-  keys_.clear();
-  for (const Quad& q : quads_) keys_.push_back(sorted_quad(q));
+  std::swap(quads_, quads);  // the old lists become the next offer's scratch
+  std::swap(across_, across);
+  make_keys();
   return true;
 }
 
+void VertexStar::make_keys() {
+  keys_.clear();
+  for (const Quad& q : quads_) keys_.push_back(sorted_quad(q));
+}
+
 bool VertexStar::has(const Quad& sorted) const {
-  return std::find(keys_.begin(), keys_.end(), sorted) != keys_.end();
+  return std::any_of(keys_.begin(), keys_.end(),
+                     [&](const Quad& key) { return same_quad(key, sorted); });
 }
 
 void VertexStar::link_vertices(std::vector<VertexId>& out) const {

@@ -15,6 +15,23 @@
 
 namespace dtlab::engine {
 
+// Working space of VertexStar::offer, shared by every star of a repair (a star keeps only what
+// it is).
+struct StarScratch {
+  struct OpenFace {
+    VertexId key;  // the face's vertex other than the centre and the offered one
+    int quad;
+    int face;
+  };
+  std::vector<char> conflict;
+  std::vector<char> visited;
+  std::vector<int> stack;
+  std::vector<int> remap;
+  std::vector<Quad> next_quads;
+  std::vector<std::array<int, 4>> next_across;
+  std::vector<OpenFace> open;
+};
+
 class VertexStar {
  public:
   // The star of v over {a, b, c} (not coplanar with v) and the vertex at infinity: the finite
@@ -25,7 +42,8 @@ class VertexStar {
   // Offers w: false when w was known already or enters no tetrahedron (it is no Delaunay
   // neighbour of v over the known vertices); else the star changed and `removed` received the
   // tetrahedra that left it.
-  bool offer(const std::vector<predicates::Point3>& points, VertexId w, std::vector<Quad>& removed);
+  bool offer(const std::vector<predicates::Point3>& points, VertexId w, std::vector<Quad>& removed,
+             StarScratch& scratch);
 
   // Whether a tetrahedron with these vertices (sorted) is in the star.
   [[nodiscard]] bool has(const Quad& sorted) const;
@@ -36,6 +54,13 @@ class VertexStar {
   void link_vertices(std::vector<VertexId>& out) const;
 
  private:
+  static constexpr int kOutside = -1;    // no finite cone holds the direction
+  static constexpr int kUndecided = -2;  // a tie on a cone's boundary, or the walk ran long
+  // The finite tetrahedron whose open cone at the centre holds w's direction, or kOutside, or
+  // kUndecided.
+  [[nodiscard]] int cone_of(const std::vector<predicates::Point3>& points, VertexId w) const;
+  void make_keys();
+
   VertexId center_ = kInfiniteVertex;
   std::vector<Quad> quads_;
   std::vector<Quad> keys_;  // keys_[i]: quads_[i] sorted (has() compares without sorting)
@@ -43,11 +68,6 @@ class VertexStar {
   // face contains the centre; -1 for the face opposite the centre.
   std::vector<std::array<int, 4>> across_;
   std::vector<VertexId> known_;  // sorted
-  // Scratch, reused across offers.
-  std::vector<char> conflict_;
-  std::vector<char> visited_;
-  std::vector<int> stack_;
-  std::vector<int> remap_;
 };
 
 // A quad's vertices in increasing order (the vertex at infinity last): a tetrahedron's identity.
@@ -56,6 +76,12 @@ inline Quad sorted_quad(Quad q) {
     for (std::size_t j = i; j > 0 && q[j - 1] > q[j]; --j) std::swap(q[j - 1], q[j]);
   }
   return q;
+}
+
+// Whether two quads name the same vertices in the same places (inline: std::array's == calls
+// memcmp, and the stars compare quads in their inner loops).
+inline bool same_quad(const Quad& a, const Quad& b) {
+  return ((a[0] ^ b[0]) | (a[1] ^ b[1]) | (a[2] ^ b[2]) | (a[3] ^ b[3])) == 0;
 }
 
 }  // namespace dtlab::engine
