@@ -157,25 +157,68 @@ std::array<VertexId, 4> pool_of(const std::vector<Point3>& points,
   return *s.simplex;
 }
 
+// Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges, one thread each
+// (the caller's thread takes the last); with parts <= 1, or n below 4096, it runs inline as
+// part 0 alone.
+template <class Work>
+void in_parallel_ranges(std::size_t n, int parts, Work work) {
+  const auto count = static_cast<std::size_t>(std::max(parts, 1));
+  if (count == 1 || n < 4096) {
+    work(std::size_t{0}, n, std::size_t{0});
+    return;
+  }
+  std::vector<std::thread> helpers;
+  helpers.reserve(count - 1);
+  for (std::size_t part = 0; part + 1 < count; ++part) {
+    helpers.emplace_back(work, n * part / count, n * (part + 1) / count, part);
+  }
+  work(n * (count - 1) / count, n, count - 1);
+  for (std::thread& h : helpers) h.join();
+}
+
 // The shared mesh as MeshStars: every live tetrahedron at each vertex, from an incidence list
 // (not a walk over neighbours: a broken mesh's star need not be connected through its faces).
+// Built by up to four threads, each over one range of `live` with its own counts (so each list
+// keeps the order of `live`, whatever the thread count).
 class SharedMeshStars : public MeshStars {
  public:
-  SharedMeshStars(const SharedMesh& mesh, const std::vector<TetId>& live)
+  SharedMeshStars(const SharedMesh& mesh, const std::vector<TetId>& live, int threads)
       : mesh_(mesh), first_(mesh.points.size() + 1, 0) {
-    for (const TetId t : live) {
-      for (const VertexId v : mesh.tets[t].vertex) {
-        if (v != kInfiniteVertex) ++first_[v + 1];
+    const std::size_t n = mesh.points.size();
+    const int parts = std::clamp(threads, 1, 4);
+    std::vector<std::vector<std::uint32_t>> at(static_cast<std::size_t>(parts));
+    in_parallel_ranges(live.size(), parts,
+                       [&](std::size_t begin, std::size_t end, std::size_t part) {
+                         std::vector<std::uint32_t>& count = at[part];
+                         count.assign(n, 0);
+                         for (std::size_t i = begin; i < end; ++i) {
+                           for (const VertexId v : mesh.tets[live[i]].vertex) {
+                             if (v != kInfiniteVertex) ++count[v];
+                           }
+                         }
+                       });
+    // Each part's count becomes where its first tetrahedron at v goes.
+    std::uint32_t next = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+      first_[v] = next;
+      for (auto& count : at) {
+        if (count.empty()) continue;  // a part that had no range (a short list runs as one)
+        const std::uint32_t here = count[v];
+        count[v] = next;
+        next += here;
       }
     }
-    std::partial_sum(first_.begin(), first_.end(), first_.begin());
-    of_.resize(first_.back());
-    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (const TetId t : live) {
-      for (const VertexId v : mesh.tets[t].vertex) {
-        if (v != kInfiniteVertex) of_[fill[v]++] = t;
-      }
-    }
+    first_[n] = next;
+    of_.resize(next);
+    in_parallel_ranges(live.size(), parts,
+                       [&](std::size_t begin, std::size_t end, std::size_t part) {
+                         std::vector<std::uint32_t>& place = at[part];
+                         for (std::size_t i = begin; i < end; ++i) {
+                           for (const VertexId v : mesh.tets[live[i]].vertex) {
+                             if (v != kInfiniteVertex) of_[place[v]++] = live[i];
+                           }
+                         }
+                       });
   }
   void tetrahedra_of(VertexId x, std::vector<Quad>& out) const override {
     out.clear();
@@ -248,24 +291,6 @@ std::vector<TetId> in_vertex_order(const SharedMesh& mesh, const std::vector<Tet
   return ordered;
 }
 
-// Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges, one thread each
-// (the caller's thread takes the last); parts <= 1 runs inline.
-template <class Work>
-void in_parallel_ranges(std::size_t n, int parts, Work work) {
-  const auto count = static_cast<std::size_t>(std::max(parts, 1));
-  if (count == 1 || n < 4096) {
-    work(std::size_t{0}, n, std::size_t{0});
-    return;
-  }
-  std::vector<std::thread> helpers;
-  helpers.reserve(count - 1);
-  for (std::size_t part = 0; part + 1 < count; ++part) {
-    helpers.emplace_back(work, n * part / count, n * (part + 1) / count, part);
-  }
-  work(n * (count - 1) / count, n, count - 1);
-  for (std::thread& h : helpers) h.join();
-}
-
 // What the exact scan of one range of live tetrahedra found: the vertices to splay from.
 struct ScanFindings {
   std::vector<VertexId> to_seed;
@@ -296,7 +321,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   std::vector<TetId> live;
   for (const auto& part : live_parts) live.insert(live.end(), part.begin(), part.end());
   live_parts = {};
-  const SharedMeshStars stars_of_mesh(mesh, live);
+  const SharedMeshStars stars_of_mesh(mesh, live, parts);
   std::vector<char> seed(points.size(), 0);
   auto seed_quad = [&](const Quad& q) {
     for (const VertexId v : q) {
@@ -322,6 +347,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
         // the misses overlap instead of queueing one behind the other.
         constexpr std::size_t kRecordsAhead = 16;
         constexpr std::size_t kNeighboursAhead = 8;
+        constexpr std::size_t kApexAhead = 4;
         for (std::size_t k = begin; k < end; ++k) {
           if (k + kRecordsAhead < end)
             __builtin_prefetch(&mesh.tets[scan_order[k + kRecordsAhead]]);
@@ -329,6 +355,15 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
             const TetId ahead = scan_order[k + kNeighboursAhead];
             for (const FaceRef n : mesh.tets[ahead].neighbor) {
               if (ref_tet(n) > ahead) __builtin_prefetch(&mesh.tets[ref_tet(n)]);
+            }
+          }
+          if (k + kApexAhead < end) {
+            const TetId ahead = scan_order[k + kApexAhead];
+            for (const FaceRef n : mesh.tets[ahead].neighbor) {
+              if (ref_tet(n) <= ahead) continue;
+              const VertexId apex =
+                  mesh.tets[ref_tet(n)].vertex[static_cast<std::size_t>(ref_face(n))];
+              if (apex != kInfiniteVertex) __builtin_prefetch(&points[apex]);
             }
           }
           const TetId i = scan_order[k];
