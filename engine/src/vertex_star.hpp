@@ -56,8 +56,9 @@ class VertexStar {
  private:
   static constexpr int kOutside = -1;    // no finite cone holds the direction
   static constexpr int kUndecided = -2;  // a tie on a cone's boundary, or the walk ran long
-  // The finite tetrahedron whose open cone at the centre holds w's direction, or kOutside, or
-  // kUndecided.
+  // The finite tetrahedron whose open cone at the centre holds w's direction (then no other
+  // closed cone holds it: it is the one offer's search in order would find), or kOutside, or
+  // kUndecided (offer then searches the closed cones in order).
   [[nodiscard]] int cone_of(const std::vector<predicates::Point3>& points, VertexId w) const;
   void make_keys();
 
