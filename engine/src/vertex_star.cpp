@@ -48,10 +48,22 @@ bool VertexStar::knows(VertexId w) const {
   return std::binary_search(known_.begin(), known_.end(), w);
 }
 
+namespace {
+
+bool finite(const Quad& q) {
+  return std::find(q.begin(), q.end(), kInfiniteVertex) == q.end();
+}
+
+// Which side of q's face opposite q[j] w lies on: orient3d of q with w in q[j]'s place (> 0: the
+// inner side, where q[j] is).
+int side_of_face(const std::vector<predicates::Point3>& points, Quad q, std::size_t j, VertexId w) {
+  q[j] = w;
+  return Exact::orient3d(points[q[0]], points[q[1]], points[q[2]], points[q[3]]);
+}
+
+}  // namespace
+
 int VertexStar::cone_of(const std::vector<predicates::Point3>& points, VertexId w) const {
-  auto finite = [](const Quad& q) {
-    return std::find(q.begin(), q.end(), kInfiniteVertex) == q.end();
-  };
   std::size_t i = 0;
   while (i < quads_.size() && !finite(quads_[i])) ++i;
   if (i == quads_.size()) return kUndecided;  // never: the star spans 3D from its start
@@ -66,9 +78,7 @@ int VertexStar::cone_of(const std::vector<predicates::Point3>& points, VertexId 
     for (std::size_t k = 0; k < 4 && exit < 0; ++k) {
       const std::size_t j = (k + step) & 3;  // a varying first face, against cycles
       if (q[j] == center_) continue;
-      Quad r = q;
-      r[j] = w;
-      const int side = Exact::orient3d(points[r[0]], points[r[1]], points[r[2]], points[r[3]]);
+      const int side = side_of_face(points, q, j, w);
       if (side < 0) exit = static_cast<int>(j);
       tie |= side == 0;
     }
@@ -104,20 +114,18 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
     // A tie or a long walk: the first finite cone that holds the direction, in order.
     for (std::size_t i = 0; i < n && !held; ++i) {
       const Quad& q = quads_[i];
-      if (std::find(q.begin(), q.end(), kInfiniteVertex) != q.end()) continue;
+      if (!finite(q)) continue;
       held = true;
       for (std::size_t j = 0; j < 4 && held; ++j) {
-        if (q[j] == center_) continue;
-        Quad r = q;
-        r[j] = w;  // w on the inner side of the face opposite q[j], or on it
-        held = Exact::orient3d(points[r[0]], points[r[1]], points[r[2]], points[r[3]]) >= 0;
+        // w on the inner side of the face opposite q[j], or on it
+        held = q[j] == center_ || side_of_face(points, q, j, w) >= 0;
       }
       if (held && in_conflict<Exact>(points, q, w)) start = static_cast<int>(i);
     }
   }
   for (std::size_t i = 0; i < n && !held && start < 0; ++i) {
     const Quad& q = quads_[i];
-    if (std::find(q.begin(), q.end(), kInfiniteVertex) == q.end()) continue;
+    if (finite(q)) continue;
     if (in_conflict<Exact>(points, q, w)) start = static_cast<int>(i);
   }
   if (start < 0) return false;
