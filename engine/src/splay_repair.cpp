@@ -91,16 +91,16 @@ class NearGrid {
 };
 
 // 32 bits of a hash of a point's coordinates (-0.0 read as +0.0, since the two are equal): equal
-// points hash alike. A multiply-xorshift mix of the three bit patterns.
+// points hash alike. Knuth's multiplicative hashing (TAOCP vol. 3, 6.4) with the golden ratio,
+// 2^64 / phi, folded over the three bit patterns; the high half of the last product is the key.
 std::uint64_t coordinate_hash(const Point3& p) {
+  constexpr std::uint64_t kGoldenRatio = 0x9E3779B97F4A7C15ULL;  // floor(2^64 / phi), odd
   auto bits = [](double c) { return std::bit_cast<std::uint64_t>(c == 0.0 ? 0.0 : c); };
-  auto mix = [](std::uint64_t h) {
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdULL;
-    h ^= h >> 33;
-    return h;
-  };
-  const std::uint64_t h = mix(mix(mix(bits(p.x)) ^ bits(p.y)) ^ bits(p.z));
+  std::uint64_t h = 0;
+  for (const double c : {p.x, p.y, p.z}) {
+    h = (h ^ bits(c)) * kGoldenRatio;
+    h ^= h >> 29;  // the high bits back into the low ones, for the next product
+  }
   return h >> 32;  // a 32-bit key: the radix sort skips the four zero digits
 }
 
