@@ -390,8 +390,13 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
         const int limit = outcome == decltype(dt)::Outcome::Unlocated
                               ? WorkSource::kMaxLocationAttempts
                               : WorkSource::kMaxLockAttempts;
-        if (!work.retry_later(*v, limit)) {
-          ++counters.abandoned;
+        const bool abandoned = !work.retry_later(*v, limit);
+        if (abandoned) ++counters.abandoned;
+        // Progress for the watchdog: an abandonment, and a failed location too, since a point
+        // has at most kMaxLocationAttempts of them (bounded work: the last rounds over an inexact
+        // kernel's hopeless points, slow under a sanitizer, are no stall). Not a lock conflict:
+        // threads can give up against each other forever.
+        if (abandoned || outcome == decltype(dt)::Outcome::Unlocated) {
           progress.fetch_add(1, std::memory_order_relaxed);
         }
         // Back off before the next attempt: the thread that waited for our locks must get them
