@@ -174,6 +174,13 @@ TEST(InsphereDoubleWord, LowestBitExponent) {
   EXPECT_EQ(detail::lowest_bit_exponent(0x1p-120), -120);
   EXPECT_EQ(detail::lowest_bit_exponent(1.0 + 0x1p-52), -52);
   EXPECT_EQ(detail::lowest_bit_exponent(0x1p-1074), -1074);  // the smallest subnormal
+  EXPECT_EQ(detail::lowest_bit_exponent(3 * 0x1p-1074), -1074);
+  EXPECT_EQ(detail::lowest_bit_exponent(0x1p-1040), -1040);  // a subnormal's one bit
+  EXPECT_EQ(detail::lowest_bit_exponent(0x1p-1022), -1022);  // the smallest normal
+  EXPECT_EQ(detail::lowest_bit_exponent(-0x1p1023), 1023);
+  EXPECT_EQ(detail::common_power_of_two(
+                std::array<detail::RoundedRow, 3>{{{-0.0, 0.5, 0.0}, {0.0, -0.0, 3.0}, {0, 0, 0}}}),
+            -1);
   EXPECT_EQ(detail::common_power_of_two(
                 std::array<detail::RoundedRow, 4>{{{4, 0, 8}, {12, 0, 0}, {0, 16, 0}, {0, 0, 0}}}),
             2);

@@ -4,9 +4,12 @@
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <random>
+#include <tuple>
+#include <vector>
 
 #include "dtlab/predicates/expansion.hpp"
 #include "dtlab/predicates/kernels.hpp"
@@ -182,6 +185,41 @@ RC_GTEST_PROP(Perturbation, InfiniteCellNeverZero, ()) {
   RC_ASSERT(s != 0);
   RC_ASSERT(s == predicates::infinite_insphere_perturbed<ExactKernel>(p[0], p[1], p[2], p[3]));
   RC_ASSERT(s == predicates::infinite_insphere_perturbed<FilteredKernel>(p[0], p[1], p[2], p[3]));
+}
+
+// The lazy order visits the points from the lexicographically largest down (a sort's order), and
+// the branch-free comparison is the plain one, on points that share coordinates (and signed
+// zeros, which compare equal).
+RC_GTEST_PROP(Perturbation, LazyOrderIsTheSortedOrder, ()) {
+  const auto coordinate = rc::gen::element(-1.0, -0.0, 0.0, 1.0, 2.0);
+  const auto p = *rc::gen::uniqueBy<std::vector<Point3>>(
+      5, rc::gen::construct<Point3>(coordinate, coordinate, coordinate),
+      [](const Point3& q) { return std::make_tuple(q.x + 0.0, q.y + 0.0, q.z + 0.0); });
+  for (const Point3& a : p) {
+    for (const Point3& b : p) {
+      RC_ASSERT(predicates::lexicographically_less_branchless(a, b) ==
+                predicates::lexicographically_less(a, b));
+    }
+  }
+  const std::array<const Point3*, 5> pts{&p[0], &p[1], &p[2], &p[3], &p[4]};
+  std::vector<int> sorted{0, 1, 2, 3, 4};
+  std::sort(sorted.begin(), sorted.end(), [&](int i, int j) {
+    return predicates::lexicographically_less(p[static_cast<std::size_t>(j)],
+                                              p[static_cast<std::size_t>(i)]);
+  });
+  std::vector<int> visited;
+  RC_ASSERT(predicates::in_perturbation_order(pts, [&](int i) {
+              visited.push_back(i);
+              return 0;
+            }) == 0);
+  RC_ASSERT(visited == sorted);
+  const std::size_t stop = *rc::gen::inRange<std::size_t>(0, 5);
+  visited.clear();
+  RC_ASSERT(predicates::in_perturbation_order(pts, [&](int i) {
+              visited.push_back(i);
+              return visited.size() == stop + 1 ? -1 : 0;
+            }) == -1);
+  RC_ASSERT(visited.size() == stop + 1);
 }
 
 TEST(Expansion, PrimitivesAreExact) {

@@ -17,25 +17,30 @@ struct RoundedRow {
 };
 
 // The exponent of the lowest set bit of a finite nonzero double: x is a multiple of 2^result.
+// The hidden bit is set even for a subnormal: its stored significand is nonzero, so the bit above
+// it does not change where its lowest set bit is; a subnormal's exponent is that of biased 1.
+// Without branches, so that the compiler does not split normal from subnormal numbers.
 inline int lowest_bit_exponent(double x) {
   const auto bits = std::bit_cast<std::uint64_t>(x);
   const auto biased = static_cast<int>((bits >> 52) & 0x7ffU);
-  std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
-  if (biased != 0) significand |= std::uint64_t{1} << 52;  // the hidden bit of a normal number
+  const std::uint64_t significand = bits | (std::uint64_t{1} << 52);
   return std::max(biased, 1) - 1075 + std::countr_zero(significand);
 }
 
 // The largest g such that every coordinate of every row is a multiple of 2^g (a determinant that
 // is an integer polynomial of degree k in them is then a multiple of 2^(k g)); `kAllZero` when
-// every coordinate is 0.
+// every coordinate is 0. Without branches: on grids, which coordinates are 0 is unpredictable.
 inline constexpr int kAllZero = 1 << 20;
+inline int lowest_bit_or_all_zero(double c) {
+  const int zero = -static_cast<int>((std::bit_cast<std::uint64_t>(c) << 1) == 0);  // +-0.0
+  return (lowest_bit_exponent(c) & ~zero) | (kAllZero & zero);
+}
 template <std::size_t N>
 int common_power_of_two(const std::array<RoundedRow, N>& r) {
   int g = kAllZero;
   for (const RoundedRow& row : r) {
-    for (const double c : {row.x, row.y, row.z}) {
-      if (c != 0.0) g = std::min(g, lowest_bit_exponent(c));
-    }
+    g = std::min({g, lowest_bit_or_all_zero(row.x), lowest_bit_or_all_zero(row.y),
+                  lowest_bit_or_all_zero(row.z)});
   }
   return g;
 }
