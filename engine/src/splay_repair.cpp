@@ -1,6 +1,7 @@
 #include "splay_repair.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -225,7 +226,6 @@ class SharedMeshStars : public MeshStars {
     for (std::uint32_t i = first_[x]; i < first_[x + 1]; ++i)
       out.push_back(mesh_.tets[of_[i]].vertex);
   }
-  [[nodiscard]] bool is_vertex(VertexId x) const { return first_[x + 1] > first_[x]; }
 
  private:
   const SharedMesh& mesh_;
@@ -309,19 +309,26 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   const std::vector<Point3>& points = mesh.points;
   // One pass over the store (DAG nodes included, about 50 slots per point): the live tetrahedra,
   // in slot order (each thread lists a range; the lists are joined in range order).
+  // The same pass marks the vertices of the mesh (threads may mark one vertex together: relaxed
+  // stores of the same value).
   const std::size_t slots = mesh.tets.size();
   std::vector<std::vector<TetId>> live_parts(static_cast<std::size_t>(parts));
+  std::vector<char> in_mesh(points.size(), 0);
   in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     for (std::size_t i = begin; i < end; ++i) {
       if (mesh.tets.is_alive(static_cast<TetId>(i), std::memory_order_acquire)) {
         live_parts[part].push_back(static_cast<TetId>(i));
+        for (const VertexId v : mesh.tets[static_cast<TetId>(i)].vertex) {
+          if (v != kInfiniteVertex)
+            std::atomic_ref<char>(in_mesh[v]).store(1, std::memory_order_relaxed);
+        }
       }
     }
   });
   std::vector<TetId> live;
   for (const auto& part : live_parts) live.insert(live.end(), part.begin(), part.end());
   live_parts = {};
-  const SharedMeshStars stars_of_mesh(mesh, live, parts);
+  auto is_vertex = [&](VertexId v) { return in_mesh[v] != 0; };
   std::vector<char> seed(points.size(), 0);
   auto seed_quad = [&](const Quad& q) {
     for (const VertexId v : q) {
@@ -412,21 +419,32 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // second vertex of the same point (an inexact kernel can insert a duplicate) seeds the vertices
   // around it, whose new stars leave it out. (The engine's skipped duplicates are the other
   // points of each set: nothing to do.)
-  const std::vector<VertexId> canonical =
-      canonical_points(points, [&](VertexId v) { return stars_of_mesh.is_vertex(v); });
+  const std::vector<VertexId> canonical = canonical_points(points, is_vertex);
   std::vector<VertexId> vertices;
-  std::vector<Quad> around;
+  std::vector<VertexId> second_copies;
+  bool any_seed = false;
   for (VertexId v = 0; v < points.size(); ++v) {
     if (canonical[v] == v) {
       vertices.push_back(v);
-      if (!stars_of_mesh.is_vertex(v)) {
+      if (!is_vertex(v)) {
         seed[v] = 1;
         ++stats.missing_vertices;
       }
-    } else if (stars_of_mesh.is_vertex(v)) {
-      stars_of_mesh.tetrahedra_of(v, around);
-      for (const Quad& q : around) seed_quad(q);
+      any_seed |= seed[v] != 0;
+    } else if (is_vertex(v)) {
+      second_copies.push_back(v);
     }
+  }
+  // Nothing to splay (the usual end of a clean run): the incidence lists are not built.
+  if (!any_seed && second_copies.empty()) {
+    stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return;
+  }
+  const SharedMeshStars stars_of_mesh(mesh, live, parts);
+  std::vector<Quad> around;
+  for (const VertexId v : second_copies) {
+    stars_of_mesh.tetrahedra_of(v, around);
+    for (const Quad& q : around) seed_quad(q);
   }
   std::vector<VertexId> seeds;
   for (VertexId v = 0; v < points.size(); ++v) {
@@ -440,7 +458,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
 
   std::vector<VertexId> present;  // the vertices of the mesh, for the near-point grid
   for (const VertexId v : vertices) {
-    if (stars_of_mesh.is_vertex(v)) present.push_back(v);
+    if (is_vertex(v)) present.push_back(v);
   }
   const NearGrid grid(points, present);
   StarSplayer splayer(points, stars_of_mesh, canonical, pool_of(points, vertices),
