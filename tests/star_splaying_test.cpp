@@ -195,6 +195,57 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
 }
 
+// Burglary's live marks are seeds only where the scan found damage: on an exactly built mesh that
+// the scan proves Delaunay they are counted and left alone; with damage (or on a mesh an inexact
+// kernel built, whose clean scan proves nothing) their vertices are splayed too.
+TEST(SplaySharedMesh, MarksAreSeedsOnlyWhereTheScanFoundDamage) {
+  const auto points = generators::generate("uniform", 2000, 6).points;
+  const auto limit = static_cast<VertexId>(points.size());
+  auto live_tetrahedra = [](const engine::SharedMesh& mesh, std::size_t wanted) {
+    std::vector<engine::TetId> found;
+    for (engine::TetId t = 0; t < mesh.tets.size() && found.size() < wanted; t += 7) {
+      if (mesh.tets.is_alive(t)) found.push_back(t);
+    }
+    return found;
+  };
+  {
+    BrokenMesh clean(points);
+    const auto expected = canonical(clean.dt.finite_tetrahedra(limit));
+    const auto marks = live_tetrahedra(clean.dt.mesh(), 30);
+    ASSERT_EQ(marks.size(), 30U);
+    engine::SplayStats proven;
+    engine::splay_shared_mesh(clean.dt.mesh(), marks, true, 1, proven);
+    EXPECT_EQ(proven.live_marks, 30U);
+    EXPECT_FALSE(proven.marks_seeded);
+    EXPECT_EQ(proven.seeds, 0U);
+    EXPECT_EQ(proven.stars, 0U);
+    engine::SplayStats inexact;
+    engine::splay_shared_mesh(clean.dt.mesh(), marks, false, 1, inexact);
+    EXPECT_TRUE(inexact.marks_seeded);
+    EXPECT_GT(inexact.seeds, 0U);
+    EXPECT_EQ(canonical(clean.dt.finite_tetrahedra(limit)), expected);
+  }
+  BrokenMesh broken(points);
+  const auto expected = canonical(broken.dt.finite_tetrahedra(limit));
+  ASSERT_EQ(broken.force_flips(5, 4), 5);
+  const auto marks = live_tetrahedra(broken.dt.mesh(), 30);
+  std::vector<VertexId> marked;  // every vertex of a mark must be a seed (the flips add more)
+  for (const auto t : marks) {
+    for (const VertexId v : broken.dt.mesh().tets[t].vertex) {
+      if (v != engine::kInfiniteVertex) marked.push_back(v);
+    }
+  }
+  std::sort(marked.begin(), marked.end());
+  marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+  engine::SplayStats damaged;
+  engine::splay_shared_mesh(broken.dt.mesh(), marks, true, 1, damaged);
+  EXPECT_GT(damaged.non_delaunay_faces, 0U);
+  EXPECT_TRUE(damaged.marks_seeded);
+  EXPECT_EQ(damaged.live_marks, 30U);
+  EXPECT_GE(damaged.seeds, marked.size());
+  EXPECT_EQ(canonical(broken.dt.finite_tetrahedra(limit)), expected);
+}
+
 // --repair after the fast kernel, every method: the exact Delaunay mesh on every family, the
 // families where the fast kernel breaks the mesh included.
 TEST(SplayRepair, FastKernelThenRepairGivesTheDelaunayMesh) {

@@ -408,10 +408,17 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   stats.seconds_scan = std::chrono::duration<double>(Clock::now() - t0).count();
   // Burglary's marks that are still live tetrahedra. (A dead mark stands for the live tetrahedra
   // below it in the DAG, which for a mark made early is much of the mesh; the exact scan above
-  // finds every non-Delaunay face among them anyway.)
+  // finds every non-Delaunay face among them anyway.) They are seeds unless the scan proved the
+  // mesh Delaunay: on a consistent mesh (an exactly built one is, burglary's included:
+  // docs/design.md), every face locally Delaunay under the perturbed test and every tetrahedron
+  // positively oriented make it the Delaunay tetrahedralization, so a star at a mark would be
+  // splayed into itself, and only the incidence lists' cost would remain.
+  const bool proven = exact_mesh && stats.non_delaunay_faces == 0 && stats.bad_tetrahedra == 0;
+  stats.marks_seeded = !proven;
   for (const TetId t : marks) {
     if (t < slots && mesh.tets.is_alive(t, std::memory_order_acquire)) {
-      seed_quad(mesh.tets[t].vertex);
+      ++stats.live_marks;
+      if (!proven) seed_quad(mesh.tets[t].vertex);
     }
   }
   // Each set of equal points has one vertex in the result (`canonical`: the vertex the engine

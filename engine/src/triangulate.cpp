@@ -541,6 +541,8 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"bad_tetrahedra", r.bad_tetrahedra},
                   {"missing_vertices", r.missing_vertices},
                   {"seeds", r.seeds},
+                  {"live_marks", r.live_marks},
+                  {"marks_seeded", r.marks_seeded},
                   {"stars", r.stars},
                   {"offers", r.offers},
                   {"changes", r.changes},

@@ -132,9 +132,11 @@ struct SplayStats {
   std::uint64_t bad_tetrahedra = 0;      // flat or inverted finite tetrahedra found by the scan
   std::uint64_t missing_vertices = 0;    // points that were no vertex (abandoned insertions)
   std::uint64_t seeds = 0;               // vertices splayed from the start
-  std::uint64_t stars = 0;               // stars built: the seeds and the vertices they reached
-  std::uint64_t offers = 0;              // vertices offered to stars
-  std::uint64_t changes = 0;             // offers that changed a star
+  std::uint64_t live_marks = 0;          // burglary's marks that are still live tetrahedra
+  bool marks_seeded = false;  // their vertices were seeds (not when the scan proved the mesh)
+  std::uint64_t stars = 0;    // stars built: the seeds and the vertices they reached
+  std::uint64_t offers = 0;   // vertices offered to stars
+  std::uint64_t changes = 0;  // offers that changed a star
   std::uint64_t regrown = 0;  // rounds that splayed more vertices where a broken mesh did not fit
   std::uint64_t tetrahedra_removed = 0;
   std::uint64_t tetrahedra_created = 0;
