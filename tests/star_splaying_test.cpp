@@ -225,25 +225,26 @@ TEST(SplaySharedMesh, MarksAreSeedsOnlyWhereTheScanFoundDamage) {
     EXPECT_GT(inexact.seeds, 0U);
     EXPECT_EQ(canonical(clean.dt.finite_tetrahedra(limit)), expected);
   }
-  BrokenMesh broken(points);
-  const auto expected = canonical(broken.dt.finite_tetrahedra(limit));
-  ASSERT_EQ(broken.force_flips(5, 4), 5);
-  const auto marks = live_tetrahedra(broken.dt.mesh(), 30);
-  std::vector<VertexId> marked;  // every vertex of a mark must be a seed (the flips add more)
-  for (const auto t : marks) {
-    for (const VertexId v : broken.dt.mesh().tets[t].vertex) {
-      if (v != engine::kInfiniteVertex) marked.push_back(v);
-    }
+  // The same damage (same forced flips) repaired without and with the marks: with them, more
+  // seeds, and the same Delaunay mesh.
+  std::vector<engine::SplayStats> damaged;
+  for (const bool with_marks : {false, true}) {
+    BrokenMesh broken(points);
+    const auto expected = canonical(broken.dt.finite_tetrahedra(limit));
+    ASSERT_EQ(broken.force_flips(5, 4), 5);
+    const auto marks = live_tetrahedra(broken.dt.mesh(), 30);
+    engine::SplayStats stats;
+    engine::splay_shared_mesh(broken.dt.mesh(), with_marks ? marks : std::vector<engine::TetId>{},
+                              true, 1, stats);
+    EXPECT_GT(stats.non_delaunay_faces, 0U);
+    EXPECT_EQ(canonical(broken.dt.finite_tetrahedra(limit)), expected);
+    damaged.push_back(stats);
   }
-  std::sort(marked.begin(), marked.end());
-  marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
-  engine::SplayStats damaged;
-  engine::splay_shared_mesh(broken.dt.mesh(), marks, true, 1, damaged);
-  EXPECT_GT(damaged.non_delaunay_faces, 0U);
-  EXPECT_TRUE(damaged.marks_seeded);
-  EXPECT_EQ(damaged.live_marks, 30U);
-  EXPECT_GE(damaged.seeds, marked.size());
-  EXPECT_EQ(canonical(broken.dt.finite_tetrahedra(limit)), expected);
+  EXPECT_FALSE(damaged[0].marks_seeded);
+  EXPECT_TRUE(damaged[1].marks_seeded);
+  EXPECT_EQ(damaged[1].live_marks, 30U);
+  EXPECT_EQ(damaged[0].non_delaunay_faces, damaged[1].non_delaunay_faces);
+  EXPECT_GT(damaged[1].seeds, damaged[0].seeds);
 }
 
 // --repair after the fast kernel, every method: the exact Delaunay mesh on every family, the

@@ -414,13 +414,13 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // positively oriented make it the Delaunay tetrahedralization, so a star at a mark would be
   // splayed into itself, and only the incidence lists' cost would remain.
   const bool proven = exact_mesh && stats.non_delaunay_faces == 0 && stats.bad_tetrahedra == 0;
-  stats.marks_seeded = !proven;
   for (const TetId t : marks) {
     if (t < slots && mesh.tets.is_alive(t, std::memory_order_acquire)) {
       ++stats.live_marks;
       if (!proven) seed_quad(mesh.tets[t].vertex);
     }
   }
+  stats.marks_seeded = !proven && stats.live_marks > 0;
   // Each set of equal points has one vertex in the result (`canonical`: the vertex the engine
   // kept, else the lowest index): one that is no vertex yet (an abandoned insertion) is seeded; a
   // second vertex of the same point (an inexact kernel can insert a duplicate) seeds the vertices
