@@ -15,6 +15,7 @@
 #include "incremental_delaunay.hpp"
 #include "splay_repair.hpp"
 #include "vertex_star.hpp"
+#include "walked_mesh_stars.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -193,6 +194,62 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   EXPECT_EQ(again.non_delaunay_faces, 0U);
   EXPECT_EQ(again.stars, 0U);
   EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
+}
+
+// The two sources of the mesh's stars: walks around each vertex (an exactly built mesh) and
+// incidence lists of the whole mesh (any mesh). The same damage, repaired from each, gives the
+// same counts and the same Delaunay mesh; every star the walk finds is the listed one.
+TEST(SplaySharedMesh, WalkedStarsAreTheListedStars) {
+  const auto points = generators::generate("cospherical", 3000, 2).points;
+  const auto limit = static_cast<VertexId>(points.size());
+  std::vector<engine::SplayStats> all_stats;
+  std::vector<std::vector<io::Tetrahedron>> results;
+  for (const bool exact_mesh : {true, false}) {
+    BrokenMesh broken(points);
+    ASSERT_EQ(broken.force_flips(30, 9), 30);
+    engine::SplayStats stats;
+    engine::splay_shared_mesh(broken.dt.mesh(), {}, exact_mesh, 2, stats);
+    EXPECT_EQ(stats.stars_walked, exact_mesh);
+    EXPECT_TRUE(engine::validate(points, broken.dt.finite_tetrahedra(limit)).valid());
+    results.push_back(canonical(broken.dt.finite_tetrahedra(limit)));
+    all_stats.push_back(stats);
+  }
+  EXPECT_GT(all_stats[0].non_delaunay_faces, 0U);
+  EXPECT_EQ(all_stats[0].non_delaunay_faces, all_stats[1].non_delaunay_faces);
+  EXPECT_EQ(all_stats[0].seeds, all_stats[1].seeds);
+  EXPECT_EQ(results[0], results[1]);
+
+  // Star by star, on a Delaunay mesh: the walk finds each vertex's tetrahedra, the listed ones.
+  BrokenMesh mesh(points);
+  const engine::SharedMesh& shared = mesh.dt.mesh();
+  std::vector<engine::TetId> lowest(points.size(), engine::kNoTet);
+  std::vector<std::vector<Quad>> listed(points.size());
+  for (engine::TetId t = 0; t < shared.tets.size(); ++t) {
+    if (!shared.tets.is_alive(t)) continue;
+    for (const VertexId v : shared.tets[t].vertex) {
+      if (v == engine::kInfiniteVertex) continue;
+      lowest[v] = std::min(lowest[v], t);
+      listed[v].push_back(shared.tets[t].vertex);
+    }
+  }
+  const engine::WalkedMeshStars walked(shared, lowest);
+  std::vector<Quad> found;
+  for (VertexId v = 0; v < points.size(); ++v) {
+    walked.tetrahedra_of(v, found);
+    std::sort(found.begin(), found.end());
+    std::sort(listed[v].begin(), listed[v].end());
+    ASSERT_EQ(found, listed[v]) << "vertex " << v;
+  }
+}
+
+// The walk's visited set: membership across growth, and a clear that forgets everything.
+TEST(SplaySharedMesh, TetIdSetHoldsWhatWasInserted) {
+  engine::TetIdSet set;
+  for (int round = 0; round < 2; ++round) {
+    for (engine::TetId t = 0; t < 5000; t += 3) EXPECT_TRUE(set.insert(t * 7919U)) << t;
+    for (engine::TetId t = 0; t < 5000; ++t) EXPECT_EQ(set.insert(t * 7919U), t % 3 != 0) << t;
+    set.clear();
+  }
 }
 
 // Burglary's live marks are seeds only where the scan found damage: on an exactly built mesh that

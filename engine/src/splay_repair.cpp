@@ -5,6 +5,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
@@ -14,6 +15,7 @@
 #include "dtlab/predicates/kernels.hpp"
 #include "radix_sort.hpp"
 #include "star_splaying.hpp"
+#include "walked_mesh_stars.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -309,18 +311,22 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   const std::vector<Point3>& points = mesh.points;
   // One pass over the store (DAG nodes included, about 50 slots per point): the live tetrahedra,
   // in slot order (each thread lists a range; the lists are joined in range order).
-  // The same pass marks the vertices of the mesh (threads may mark one vertex together: relaxed
-  // stores of the same value).
+  // The same pass finds the lowest live tetrahedron at each vertex (kNoTet: no vertex), where a
+  // walk around the vertex can start; threads lower it together with relaxed compare-and-swaps
+  // (a thread's own ids only grow, so one rarely retries).
   const std::size_t slots = mesh.tets.size();
   std::vector<std::vector<TetId>> live_parts(static_cast<std::size_t>(parts));
-  std::vector<char> in_mesh(points.size(), 0);
+  std::vector<TetId> lowest_tetrahedron(points.size(), kNoTet);
   in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (mesh.tets.is_alive(static_cast<TetId>(i), std::memory_order_acquire)) {
-        live_parts[part].push_back(static_cast<TetId>(i));
-        for (const VertexId v : mesh.tets[static_cast<TetId>(i)].vertex) {
-          if (v != kInfiniteVertex)
-            std::atomic_ref<char>(in_mesh[v]).store(1, std::memory_order_relaxed);
+      const auto t = static_cast<TetId>(i);
+      if (!mesh.tets.is_alive(t, std::memory_order_acquire)) continue;
+      live_parts[part].push_back(t);
+      for (const VertexId v : mesh.tets[t].vertex) {
+        if (v == kInfiniteVertex) continue;
+        std::atomic_ref<TetId> lowest(lowest_tetrahedron[v]);
+        TetId seen = lowest.load(std::memory_order_relaxed);
+        while (t < seen && !lowest.compare_exchange_weak(seen, t, std::memory_order_relaxed)) {
         }
       }
     }
@@ -328,7 +334,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   std::vector<TetId> live;
   for (const auto& part : live_parts) live.insert(live.end(), part.begin(), part.end());
   live_parts = {};
-  auto is_vertex = [&](VertexId v) { return in_mesh[v] != 0; };
+  auto is_vertex = [&](VertexId v) { return lowest_tetrahedron[v] != kNoTet; };
   std::vector<char> seed(points.size(), 0);
   auto seed_quad = [&](const Quad& q) {
     for (const VertexId v : q) {
@@ -425,8 +431,21 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // kept, else the lowest index): one that is no vertex yet (an abandoned insertion) is seeded; a
   // second vertex of the same point (an inexact kernel can insert a duplicate) seeds the vertices
   // around it, whose new stars leave it out. (The engine's skipped duplicates are the other
-  // points of each set: nothing to do.)
-  const std::vector<VertexId> canonical = canonical_points(points, is_vertex);
+  // points of each set: nothing to do.) Where every point is a vertex of an exactly built mesh
+  // with no flat or inverted tetrahedron, no two points are equal (two vertices at one point would
+  // make the tetrahedra around them flat, or the mesh cover that point twice), and the grouping,
+  // 0.07 s at 1M points, is skipped.
+  const bool all_distinct_vertices =
+      exact_mesh && stats.bad_tetrahedra == 0 &&
+      std::all_of(lowest_tetrahedron.begin(), lowest_tetrahedron.end(),
+                  [](TetId t) { return t != kNoTet; });
+  std::vector<VertexId> canonical;
+  if (all_distinct_vertices) {
+    canonical.resize(points.size());
+    std::iota(canonical.begin(), canonical.end(), VertexId{0});
+  } else {
+    canonical = canonical_points(points, is_vertex);
+  }
   std::vector<VertexId> vertices;
   std::vector<VertexId> second_copies;
   bool any_seed = false;
@@ -442,12 +461,26 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
       second_copies.push_back(v);
     }
   }
-  // Nothing to splay (the usual end of a clean run): the incidence lists are not built.
+  // Nothing to splay (the usual end of a clean run): no star is read.
   if (!any_seed && second_copies.empty()) {
     stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return;
   }
-  const SharedMeshStars stars_of_mesh(mesh, live, parts);
+  // Where the mesh is consistent (built exactly, every tetrahedron positive, no point twice), the
+  // tetrahedra at a vertex are found by a walk around it; elsewhere from incidence lists of the
+  // whole mesh (a broken mesh's star need not be connected through its faces), which at 1M points
+  // take about 0.25 s and 110 MB.
+  std::unique_ptr<MeshStars> stars_of_mesh_owned;
+  const WalkedMeshStars* walked = nullptr;
+  stats.stars_walked = exact_mesh && stats.bad_tetrahedra == 0 && second_copies.empty();
+  if (stats.stars_walked) {
+    auto walker = std::make_unique<WalkedMeshStars>(mesh, lowest_tetrahedron);
+    walked = walker.get();
+    stars_of_mesh_owned = std::move(walker);
+  } else {
+    stars_of_mesh_owned = std::make_unique<SharedMeshStars>(mesh, live, parts);
+  }
+  const MeshStars& stars_of_mesh = *stars_of_mesh_owned;
   std::vector<Quad> around;
   for (const VertexId v : second_copies) {
     stars_of_mesh.tetrahedra_of(v, around);
@@ -506,12 +539,24 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
       }
     }
     dying.clear();
-    for (const TetId i : live) {
-      bool touched = false;
-      for (const VertexId v : mesh.tets[i].vertex) {
-        touched |= v != kInfiniteVertex && splayer.active(v);
+    if (walked != nullptr) {
+      // The walks around the active vertices find the same tetrahedra as the pass below, without
+      // reading the whole mesh (in slot order, as it lists them).
+      std::vector<TetId> around_active;
+      for (const VertexId v : splayer.active_vertices()) {
+        walked->tetrahedron_ids_of(v, around_active);
+        dying.insert(dying.end(), around_active.begin(), around_active.end());
       }
-      if (touched) dying.push_back(i);
+      std::sort(dying.begin(), dying.end());
+      dying.erase(std::unique(dying.begin(), dying.end()), dying.end());
+    } else {
+      for (const TetId i : live) {
+        bool touched = false;
+        for (const VertexId v : mesh.tets[i].vertex) {
+          touched |= v != kInfiniteVertex && splayer.active(v);
+        }
+        if (touched) dying.push_back(i);
+      }
     }
     std::vector<char> is_dying(slots, 0);
     for (const TetId t : dying) is_dying[t] = 1;

@@ -543,6 +543,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"seeds", r.seeds},
                   {"live_marks", r.live_marks},
                   {"marks_seeded", r.marks_seeded},
+                  {"stars_walked", r.stars_walked},
                   {"stars", r.stars},
                   {"offers", r.offers},
                   {"changes", r.changes},

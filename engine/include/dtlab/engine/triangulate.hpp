@@ -134,6 +134,7 @@ struct SplayStats {
   std::uint64_t seeds = 0;               // vertices splayed from the start
   std::uint64_t live_marks = 0;          // burglary's marks that are still live tetrahedra
   bool marks_seeded = false;  // their vertices were seeds (not when the scan proved the mesh)
+  bool stars_walked = false;  // the mesh's stars found by walks, not from incidence lists
   std::uint64_t stars = 0;    // stars built: the seeds and the vertices they reached
   std::uint64_t offers = 0;   // vertices offered to stars
   std::uint64_t changes = 0;  // offers that changed a star
