@@ -418,8 +418,11 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // mesh Delaunay: on a consistent mesh (an exactly built one is, burglary's included:
   // docs/design.md), every face locally Delaunay under the perturbed test and every tetrahedron
   // positively oriented make it the Delaunay tetrahedralization, so a star at a mark would be
-  // splayed into itself, and only the incidence lists' cost would remain.
-  const bool proven = exact_mesh && stats.non_delaunay_faces == 0 && stats.bad_tetrahedra == 0;
+  // splayed into itself, for nothing.
+  // `consistent`: built exactly and no flat or inverted tetrahedron found (the walks around a
+  // vertex and the skipped grouping of equal points below rely on it too).
+  const bool consistent = exact_mesh && stats.bad_tetrahedra == 0;
+  const bool proven = consistent && stats.non_delaunay_faces == 0;
   for (const TetId t : marks) {
     if (t < slots && mesh.tets.is_alive(t, std::memory_order_acquire)) {
       ++stats.live_marks;
@@ -436,9 +439,8 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // make the tetrahedra around them flat, or the mesh cover that point twice), and the grouping,
   // 0.07 s at 1M points, is skipped.
   const bool all_distinct_vertices =
-      exact_mesh && stats.bad_tetrahedra == 0 &&
-      std::all_of(lowest_tetrahedron.begin(), lowest_tetrahedron.end(),
-                  [](TetId t) { return t != kNoTet; });
+      consistent && std::all_of(lowest_tetrahedron.begin(), lowest_tetrahedron.end(),
+                                [](TetId t) { return t != kNoTet; });
   std::vector<VertexId> canonical;
   if (all_distinct_vertices) {
     canonical.resize(points.size());
@@ -472,7 +474,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // take about 0.25 s and 110 MB.
   std::unique_ptr<MeshStars> stars_of_mesh_owned;
   const WalkedMeshStars* walked = nullptr;
-  stats.stars_walked = exact_mesh && stats.bad_tetrahedra == 0 && second_copies.empty();
+  stats.stars_walked = consistent && second_copies.empty();
   if (stats.stars_walked) {
     auto walker = std::make_unique<WalkedMeshStars>(mesh, lowest_tetrahedron);
     walked = walker.get();
