@@ -275,22 +275,73 @@ std::array<VertexId, 3> face_key(const Quad& q, std::size_t f) {
   return k;
 }
 
-// The live tetrahedra ordered by their lowest finite vertex (a counting sort): the points are
-// stored in a space-filling order, so consecutive tetrahedra of this order lie near each other and
-// the scan finds their neighbours' records and their points in cache. In slot order, slots reused
-// by later insertions scatter the reads (a 3x slower scan in walk mode).
-std::vector<TetId> in_vertex_order(const SharedMesh& mesh, const std::vector<TetId>& live) {
-  auto lowest = [&](TetId t) {
-    VertexId low = kInfiniteVertex;
-    for (const VertexId v : mesh.tets[t].vertex) low = std::min(low, v);
-    return low;
+// The live tetrahedra in the exact scan's order, and the lowest live tetrahedron at each vertex
+// (kNoTet: no vertex), where a walk around the vertex can start.
+struct LiveTetrahedra {
+  std::vector<TetId> ordered;
+  std::vector<TetId> lowest_tetrahedron;
+};
+
+// The scan's order groups the tetrahedra by blocks of 2^6 consecutive vertex ids.
+constexpr unsigned kVertexBlockBits = 6;
+
+// One counting sort over the store (DAG nodes included, about 50 slots per point in DAG mode), on
+// the run's threads: each thread counts the live tetrahedra of its range of slots by the block of
+// their lowest finite vertex, then places them; the order is (block, slot) whatever the thread
+// count. The points are stored in a space-filling order, so consecutive tetrahedra of this order
+// lie near each other and the scan finds their neighbours' records and their points in cache (in
+// slot order, slots reused by later insertions scatter the reads: a 3x slower scan in walk mode).
+// Blocks of vertices rather than vertices keep each thread's counts in cache (64 KB at 1M points).
+// The first pass also lowers each vertex's lowest live tetrahedron, the threads together with
+// relaxed compare-and-swaps (a thread's own ids only grow, so one rarely retries).
+LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
+  const std::size_t slots = mesh.tets.size();
+  const std::size_t blocks = (mesh.points.size() >> kVertexBlockBits) + 1;
+  LiveTetrahedra live;
+  live.lowest_tetrahedron.assign(mesh.points.size(), kNoTet);
+  auto block_of = [](const Tet& t) {
+    VertexId low = kInfiniteVertex;  // the largest id: some vertex is finite
+    for (const VertexId v : t.vertex) low = std::min(low, v);
+    return static_cast<std::size_t>(low >> kVertexBlockBits);
   };
-  std::vector<std::uint32_t> first(mesh.points.size() + 1, 0);
-  for (const TetId t : live) ++first[lowest(t) + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<TetId> ordered(live.size());
-  for (const TetId t : live) ordered[first[lowest(t)]++] = t;
-  return ordered;
+  std::vector<std::vector<std::uint32_t>> place(static_cast<std::size_t>(std::max(parts, 1)));
+  in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
+    std::vector<std::uint32_t>& count = place[part];
+    count.assign(blocks, 0);
+    for (std::size_t i = begin; i < end; ++i) {
+      const auto t = static_cast<TetId>(i);
+      if (!mesh.tets.is_alive(t, std::memory_order_acquire)) continue;
+      const Tet& tet = mesh.tets[t];
+      ++count[block_of(tet)];
+      for (const VertexId v : tet.vertex) {
+        if (v == kInfiniteVertex) continue;
+        std::atomic_ref<TetId> lowest(live.lowest_tetrahedron[v]);
+        TetId seen = lowest.load(std::memory_order_relaxed);
+        while (t < seen && !lowest.compare_exchange_weak(seen, t, std::memory_order_relaxed)) {
+        }
+      }
+    }
+  });
+  // Each part's count becomes where its first tetrahedron of the block goes.
+  std::uint32_t next = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    for (auto& count : place) {
+      if (count.empty()) continue;  // a part that had no range (a short store runs as one)
+      const std::uint32_t here = count[b];
+      count[b] = next;
+      next += here;
+    }
+  }
+  live.ordered.resize(next);
+  in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
+    std::vector<std::uint32_t>& at = place[part];
+    for (std::size_t i = begin; i < end; ++i) {
+      const auto t = static_cast<TetId>(i);
+      if (mesh.tets.is_alive(t, std::memory_order_acquire))
+        live.ordered[at[block_of(mesh.tets[t])]++] = t;
+    }
+  });
+  return live;
 }
 
 // What the exact scan of one range of live tetrahedra found: the vertices to splay from.
@@ -309,31 +360,12 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   const int parts = std::max(threads, 1);
   stats.scan_threads = static_cast<std::uint64_t>(parts);
   const std::vector<Point3>& points = mesh.points;
-  // One pass over the store (DAG nodes included, about 50 slots per point): the live tetrahedra,
-  // in slot order (each thread lists a range; the lists are joined in range order).
-  // The same pass finds the lowest live tetrahedron at each vertex (kNoTet: no vertex), where a
-  // walk around the vertex can start; threads lower it together with relaxed compare-and-swaps
-  // (a thread's own ids only grow, so one rarely retries).
+  // The live tetrahedra in the scan's order (they also serve the incidence lists and the
+  // write-back below, in that order).
   const std::size_t slots = mesh.tets.size();
-  std::vector<std::vector<TetId>> live_parts(static_cast<std::size_t>(parts));
-  std::vector<TetId> lowest_tetrahedron(points.size(), kNoTet);
-  in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const auto t = static_cast<TetId>(i);
-      if (!mesh.tets.is_alive(t, std::memory_order_acquire)) continue;
-      live_parts[part].push_back(t);
-      for (const VertexId v : mesh.tets[t].vertex) {
-        if (v == kInfiniteVertex) continue;
-        std::atomic_ref<TetId> lowest(lowest_tetrahedron[v]);
-        TetId seen = lowest.load(std::memory_order_relaxed);
-        while (t < seen && !lowest.compare_exchange_weak(seen, t, std::memory_order_relaxed)) {
-        }
-      }
-    }
-  });
-  std::vector<TetId> live;
-  for (const auto& part : live_parts) live.insert(live.end(), part.begin(), part.end());
-  live_parts = {};
+  const LiveTetrahedra listed = live_tetrahedra(mesh, parts);
+  const std::vector<TetId>& live = listed.ordered;
+  const std::vector<TetId>& lowest_tetrahedron = listed.lowest_tetrahedron;
   auto is_vertex = [&](VertexId v) { return lowest_tetrahedron[v] != kNoTet; };
   std::vector<char> seed(points.size(), 0);
   auto seed_quad = [&](const Quad& q) {
@@ -345,66 +377,65 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // a reflex hull edge) and every flat or inverted finite tetrahedron seeds its vertices. A face is
   // tested from both sides where an inexact kernel built the mesh (its two tetrahedra need not be
   // what their insphere tests agree on); on an exactly built mesh one side decides.
-  const std::vector<TetId> scan_order = in_vertex_order(mesh, live);
   std::vector<ScanFindings> findings(static_cast<std::size_t>(parts));
-  in_parallel_ranges(
-      scan_order.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
-        ScanFindings& found = findings[part];
-        auto note_quad = [&](const Quad& q) {
-          for (const VertexId v : q) {
-            if (v != kInfiniteVertex) found.to_seed.push_back(v);
-          }
-        };
-        // Each neighbour record is a cache miss (its slot is anywhere in the store): they are
-        // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
-        // the misses overlap instead of queueing one behind the other.
-        constexpr std::size_t kRecordsAhead = 16;
-        constexpr std::size_t kNeighboursAhead = 8;
-        constexpr std::size_t kApexAhead = 4;
-        for (std::size_t k = begin; k < end; ++k) {
-          if (k + kRecordsAhead < end)
-            __builtin_prefetch(&mesh.tets[scan_order[k + kRecordsAhead]]);
-          if (k + kNeighboursAhead < end) {
-            const TetId ahead = scan_order[k + kNeighboursAhead];
-            for (const FaceRef n : mesh.tets[ahead].neighbor) {
-              if (ref_tet(n) > ahead) __builtin_prefetch(&mesh.tets[ref_tet(n)]);
-            }
-          }
-          if (k + kApexAhead < end) {
-            const TetId ahead = scan_order[k + kApexAhead];
-            for (const FaceRef n : mesh.tets[ahead].neighbor) {
-              if (ref_tet(n) <= ahead) continue;
-              const VertexId apex =
-                  mesh.tets[ref_tet(n)].vertex[static_cast<std::size_t>(ref_face(n))];
-              if (apex != kInfiniteVertex) __builtin_prefetch(&points[apex]);
-            }
-          }
-          const TetId i = scan_order[k];
-          const Tet& t = mesh.tets[i];
-          if (!t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
-                                                  points[t.vertex[2]], points[t.vertex[3]]) <= 0) {
-            ++found.bad_tetrahedra;
-            note_quad(t.vertex);
-          }
-          for (std::size_t f = 0; f < 4; ++f) {
-            const TetId other = ref_tet(t.neighbor[f]);
-            if (other < i) continue;  // each face once
-            const Tet& u = mesh.tets[other];
-            const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
-            const VertexId mine = t.vertex[f];
-            const bool one_side = exact_mesh && apex != kInfiniteVertex;
-            const bool bad =
-                (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
-                (!one_side && mine != kInfiniteVertex &&
-                 in_conflict<Exact>(points, u.vertex, mine));
-            if (bad) {
-              ++found.non_delaunay_faces;
-              note_quad(t.vertex);
-              note_quad(u.vertex);
-            }
-          }
+  in_parallel_ranges(live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
+    ScanFindings& found = findings[part];
+    auto note_quad = [&](const Quad& q) {
+      for (const VertexId v : q) {
+        if (v != kInfiniteVertex) found.to_seed.push_back(v);
+      }
+    };
+    // Each neighbour record is a cache miss (its slot is anywhere in the store): they are
+    // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
+    // the misses overlap instead of queueing one behind the other. So are the points: a
+    // tetrahedron's vertices come from different BRIO rounds, far apart in the point array.
+    constexpr std::size_t kRecordsAhead = 16;
+    constexpr std::size_t kNeighboursAhead = 8;
+    constexpr std::size_t kApexAhead = 4;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (k + kRecordsAhead < end) __builtin_prefetch(&mesh.tets[live[k + kRecordsAhead]]);
+      if (k + kNeighboursAhead < end) {
+        const TetId ahead = live[k + kNeighboursAhead];
+        for (const FaceRef n : mesh.tets[ahead].neighbor) {
+          if (ref_tet(n) > ahead) __builtin_prefetch(&mesh.tets[ref_tet(n)]);
         }
-      });
+        for (const VertexId v : mesh.tets[ahead].vertex) {
+          if (v != kInfiniteVertex) __builtin_prefetch(&points[v]);
+        }
+      }
+      if (k + kApexAhead < end) {
+        const TetId ahead = live[k + kApexAhead];
+        for (const FaceRef n : mesh.tets[ahead].neighbor) {
+          if (ref_tet(n) <= ahead) continue;
+          const VertexId apex = mesh.tets[ref_tet(n)].vertex[static_cast<std::size_t>(ref_face(n))];
+          if (apex != kInfiniteVertex) __builtin_prefetch(&points[apex]);
+        }
+      }
+      const TetId i = live[k];
+      const Tet& t = mesh.tets[i];
+      if (!t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
+                                              points[t.vertex[2]], points[t.vertex[3]]) <= 0) {
+        ++found.bad_tetrahedra;
+        note_quad(t.vertex);
+      }
+      for (std::size_t f = 0; f < 4; ++f) {
+        const TetId other = ref_tet(t.neighbor[f]);
+        if (other < i) continue;  // each face once
+        const Tet& u = mesh.tets[other];
+        const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
+        const VertexId mine = t.vertex[f];
+        const bool one_side = exact_mesh && apex != kInfiniteVertex;
+        const bool bad =
+            (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
+            (!one_side && mine != kInfiniteVertex && in_conflict<Exact>(points, u.vertex, mine));
+        if (bad) {
+          ++found.non_delaunay_faces;
+          note_quad(t.vertex);
+          note_quad(u.vertex);
+        }
+      }
+    }
+  });
   for (const ScanFindings& found : findings) {
     stats.bad_tetrahedra += found.bad_tetrahedra;
     stats.non_delaunay_faces += found.non_delaunay_faces;
