@@ -288,10 +288,12 @@ constexpr unsigned kVertexBlockBits = 6;
 // One counting sort over the store (DAG nodes included, about 50 slots per point in DAG mode), on
 // the run's threads: each thread counts the live tetrahedra of its range of slots by the block of
 // their lowest finite vertex, then places them; the order is (block, slot) whatever the thread
-// count. The points are stored in a space-filling order, so consecutive tetrahedra of this order
-// lie near each other and the scan finds their neighbours' records and their points in cache (in
-// slot order, slots reused by later insertions scatter the reads: a 3x slower scan in walk mode).
-// Blocks of vertices rather than vertices keep each thread's counts in cache (64 KB at 1M points).
+// count. The tetrahedra with one lowest vertex are much of that vertex's star, each other's
+// neighbours, and a block's (about 430 at 64 vertices) fit in cache, so the scan finds most
+// neighbours' records there; after a sequential walk the points are also stored in insertion
+// (space-filling) order, so that near ids are near points. (In slot order, slots reused by later
+// insertions scatter the reads.) Blocks of vertices rather than vertices keep each thread's
+// counts in cache (64 KB at 1M points). docs/experiments.md has the three orders measured.
 // The first pass also lowers each vertex's lowest live tetrahedron, the threads together with
 // relaxed compare-and-swaps (a thread's own ids only grow, so one rarely retries).
 LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
@@ -388,7 +390,8 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     // Each neighbour record is a cache miss (its slot is anywhere in the store): they are
     // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
     // the misses overlap instead of queueing one behind the other. So are the points: a
-    // tetrahedron's vertices come from different BRIO rounds, far apart in the point array.
+    // tetrahedron's vertices lie far apart in the point array (different BRIO rounds after a
+    // sequential walk, the input's order after a parallel run).
     constexpr std::size_t kRecordsAhead = 16;
     constexpr std::size_t kNeighboursAhead = 8;
     constexpr std::size_t kApexAhead = 4;
@@ -574,7 +577,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     dying.clear();
     if (walked != nullptr) {
       // The walks around the active vertices find the same tetrahedra as the pass below, without
-      // reading the whole mesh (in slot order, as it lists them).
+      // reading the whole mesh (sorted here; the order does not change the result).
       std::vector<TetId> around_active;
       for (const VertexId v : splayer.active_vertices()) {
         walked->tetrahedron_ids_of(v, around_active);
