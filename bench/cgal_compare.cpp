@@ -2,9 +2,11 @@
 // child process of its own (fork), so that each has its own peak memory, in interleaved rounds;
 // the table gives medians. Usage:
 //   cgal_compare INPUT [--seed S] [--repeat R] [--threads T] [--methods LIST] [--no-dag]
+//                [--insertion flips|cavity|both]
 // INPUT is a generator spec (uniform:1000000) or a point file. With --threads T > 1 the parallel
 // methods in LIST (default optimistic-detect) run in walk mode at T threads, and CGAL's parallel
-// mode (TBB) at T threads when this build has it.
+// mode (TBB) at T threads when this build has it. The walk mode's engines run with each insertion
+// asked for (default both: the flips, and the cavities as "dtlab walk cavity").
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,6 +20,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "dtlab/engine/triangulate.hpp"
@@ -80,10 +83,12 @@ double median(std::vector<double> v) {
 }
 
 Sample run_dtlab(std::vector<Point3>& points, dtlab::engine::Location location,
-                 dtlab::engine::Method method, int threads, std::uint64_t seed) {
+                 dtlab::engine::Method method, int threads, std::uint64_t seed,
+                 dtlab::engine::Insertion insertion = dtlab::engine::Insertion::Flips) {
   dtlab::engine::TriangulateOptions options;
   options.seed = seed;
   options.location = location;
+  options.insertion = insertion;
   options.method = method;
   options.threads = threads;
   if (method != dtlab::engine::Method::Sequential) {
@@ -103,7 +108,7 @@ Sample run_cgal(const std::vector<Point3>& points, int threads) {
 
 constexpr const char* kUsage =
     "usage: cgal_compare INPUT [--seed S] [--repeat R] [--threads T] [--methods LIST] "
-    "[--no-dag]\n";
+    "[--no-dag] [--insertion flips|cavity|both]\n";
 
 int compare(int argc, char** argv) {
   if (argc < 2) {
@@ -120,6 +125,7 @@ int compare(int argc, char** argv) {
   int threads = 1;
   bool dag = true;
   std::string methods = "optimistic-detect";
+  std::string insertion = "both";
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -133,6 +139,8 @@ int compare(int argc, char** argv) {
       methods = argv[++i];
     } else if (arg == "--no-dag") {
       dag = false;
+    } else if (arg == "--insertion" && has_value) {
+      insertion = argv[++i];
     } else {
       std::fprintf(stderr, "cgal_compare: unknown argument %s\n", arg.c_str());
       return 2;
@@ -147,14 +155,26 @@ int compare(int argc, char** argv) {
     points = dtlab::io::read_points(input);
   }
 
+  using dtlab::engine::Insertion;
   using dtlab::engine::Location;
   using dtlab::engine::Method;
+  if (insertion != "flips" && insertion != "cavity" && insertion != "both") {
+    std::fprintf(stderr, "cgal_compare: --insertion takes flips, cavity or both\n");
+    return 2;
+  }
+  // The walk mode's insertions asked for, each with its name's prefix.
+  std::vector<std::pair<Insertion, std::string>> walks;
+  if (insertion != "cavity") walks.emplace_back(Insertion::Flips, "dtlab walk, ");
+  if (insertion != "flips") walks.emplace_back(Insertion::Cavity, "dtlab walk cavity, ");
   std::vector<Engine> engines;
   auto add = [&](std::string name, std::function<Sample(std::vector<Point3>&)> run) {
     engines.push_back(Engine{std::move(name), std::move(run), {}});
   };
-  add("dtlab walk, sequential",
-      [&](auto& p) { return run_dtlab(p, Location::Walk, Method::Sequential, 1, seed); });
+  for (const auto& [how, prefix] : walks) {
+    add(prefix + "sequential", [&, how = how](auto& p) {
+      return run_dtlab(p, Location::Walk, Method::Sequential, 1, seed, how);
+    });
+  }
   if (dag) {
     add("dtlab DAG, sequential",
         [&](auto& p) { return run_dtlab(p, Location::Dag, Method::Sequential, 1, seed); });
@@ -177,8 +197,11 @@ int compare(int argc, char** argv) {
         std::fprintf(stderr, "cgal_compare: unknown method %s\n", name.c_str());
         return 2;
       }
-      add("dtlab walk, " + name + " " + std::to_string(threads) + "t",
-          [&, method](auto& p) { return run_dtlab(p, Location::Walk, method, threads, seed); });
+      for (const auto& [how, prefix] : walks) {
+        add(prefix + name + " " + std::to_string(threads) + "t", [&, method, how = how](auto& p) {
+          return run_dtlab(p, Location::Walk, method, threads, seed, how);
+        });
+      }
     }
     if (dtlab::experiments::cgal_parallel_available()) {
       add("CGAL, parallel (TBB) " + std::to_string(threads) + "t",
@@ -205,7 +228,7 @@ int compare(int argc, char** argv) {
       "times and memory are medians; each run in its own process (peak RSS includes the "
       "input, %.0f MiB before any run)\n",
       baseline / 1048576.0);
-  std::printf("%-36s %9s %9s %12s %10s %9s %12s\n", "engine", "median s", "min s", "Mpoints/s",
+  std::printf("%-42s %9s %9s %12s %10s %9s %12s\n", "engine", "median s", "min s", "Mpoints/s",
               "x CGAL", "peak MiB", "bytes/point");
   double cgal = 0;
   for (const Engine& e : engines) {
@@ -224,7 +247,7 @@ int compare(int argc, char** argv) {
     }
     const double t = median(s);
     const double m = median(mem);
-    std::printf("%-36s %9.3f %9.3f %12.3f %10.2f %9.0f %12.0f\n", e.name.c_str(), t,
+    std::printf("%-42s %9.3f %9.3f %12.3f %10.2f %9.0f %12.0f\n", e.name.c_str(), t,
                 *std::min_element(s.begin(), s.end()), static_cast<double>(points.size()) / t / 1e6,
                 t / cgal, m / 1048576.0, m / static_cast<double>(points.size()));
   }

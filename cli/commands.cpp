@@ -153,6 +153,16 @@ int run_triangulate(const TriangulateArgs& args) {
         static_cast<unsigned long long>(s.flips.s22), static_cast<unsigned long long>(s.flips.s44),
         static_cast<unsigned long long>(s.dag_nodes),
         static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0));
+    if (args.options.insertion == engine::Insertion::Cavity) {
+      std::printf(
+          "  cavities: %llu points inserted by their cavity (%.2f tetrahedra replaced each), %llu "
+          "fell back to flips\n",
+          static_cast<unsigned long long>(s.cavity.insertions),
+          s.cavity.insertions == 0 ? 0.0
+                                   : static_cast<double>(s.cavity.tetrahedra_removed) /
+                                         static_cast<double>(s.cavity.insertions),
+          static_cast<unsigned long long>(s.cavity.fallbacks));
+    }
     if (!s.threads.empty()) {
       engine::ThreadStats sum;
       for (const engine::ThreadStats& t : s.threads) {

@@ -87,6 +87,13 @@ int main(int argc, char** argv) {
                   "point location: dag (the paper's history DAG, random order) or walk (BRIO + "
                   "Hilbert order, visibility walk, slots reused)")
       ->transform(CLI::CheckedTransformer(locations, CLI::ignore_case));
+  const std::map<std::string, dtlab::engine::Insertion> insertions{
+      {"flips", dtlab::engine::Insertion::Flips}, {"cavity", dtlab::engine::Insertion::Cavity}};
+  tri->add_option("--insertion", targs.options.insertion,
+                  "how a located point enters the mesh: flips (the paper's splits and S23, S32, "
+                  "S22, S44; default) or cavity (Bowyer-Watson: every tetrahedron in conflict "
+                  "replaced at once; --location walk only, every method)")
+      ->transform(CLI::CheckedTransformer(insertions, CLI::ignore_case));
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
       ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
   tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed");

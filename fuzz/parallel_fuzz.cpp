@@ -12,8 +12,9 @@
 //   kernel:       0 adaptive, 1 filtered, 2 fast
 //   splay:        1: --repair (star splaying) for methods 0-3 and 6
 // The rest is a point set as for the triangulate harness (fuzz_input.hpp), at most 300 points.
-// The number of points picks the location mode: odd, the walk mode; even, the DAG. (Not the
-// input's length: every corpus input is 3 + 6k bytes long, odd.)
+// The number of points picks the location mode: odd, the walk mode; even, the DAG; and 3 mod 4,
+// the walk mode with cavity insertion. (Not the input's length: every corpus input is 3 + 6k
+// bytes long, odd.)
 //
 // Every kernel: an input that CGAL finds no tetrahedralization for (tests/cgal_reference.hpp, not
 // the engine's own code) must be refused with a TriangulationError, and any other input must not
@@ -75,8 +76,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.seed = size;
   // The default watchdog (10 s + 100 us per point) turns a hang into a TriangulationError.
   auto points = dtlab::fuzz::points_from_bytes(data + 1, size - 1, 300);
+  // Odd sizes walk; of those, every other one inserts by cavities.
   options.location =
       points.size() % 2 == 1 ? dtlab::engine::Location::Walk : dtlab::engine::Location::Dag;
+  if (points.size() % 4 == 3) options.insertion = dtlab::engine::Insertion::Cavity;
   if (options.kernel == KernelKind::Fast) {
     // Small integers keep the fast kernel's arithmetic exact; a twelfth of them (rounded, as a
     // grid with spacing 1/12 on [0, 1] is) is nearly degenerate and inexact, where it fails.
@@ -99,8 +102,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       return 0;
     }
     if (!report.mesh_consistent()) fail("unsound mesh");
-    const bool must_be_valid =
-        options.method != Method::Burglary || options.repair != dtlab::engine::Repair::None;
+    // Burglary unrepaired may leave non-Delaunay faces, except with cavity insertion.
+    const bool must_be_valid = options.method != Method::Burglary ||
+                               options.repair != dtlab::engine::Repair::None ||
+                               options.insertion == dtlab::engine::Insertion::Cavity;
     if (must_be_valid && !report.valid()) fail("invalid mesh");
     if (result.stats.abandoned_insertions != 0) fail("abandoned insertions");
     const dtlab::engine::PostCheck& check = result.stats.post_check;

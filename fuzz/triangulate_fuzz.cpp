@@ -1,7 +1,8 @@
 // bytes -> point set -> triangulate with adaptive predicates -> must validate (or be refused with
 // a TriangulationError when it has no tetrahedralization: decided by CGAL's dimension,
-// tests/cgal_reference.hpp, not by the engine's own code); the filtered kernel, and the walk mode,
-// must give the same tetrahedra (the perturbed Delaunay tetrahedralization is unique).
+// tests/cgal_reference.hpp, not by the engine's own code); the filtered kernel, the walk mode and
+// its cavity insertion must give the same tetrahedra (the perturbed Delaunay tetrahedralization
+// is unique), the cavities with none failing their star check.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -24,11 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!dtlab::engine::validate(points, result.tetrahedra).valid()) std::abort();
     dtlab::engine::TriangulateOptions filtered = options;
     filtered.kernel = dtlab::engine::KernelKind::Filtered;
-    auto sorted = [](std::vector<dtlab::engine::Tetrahedron> tets) {
-      for (auto& t : tets) std::sort(t.begin(), t.end());
-      std::sort(tets.begin(), tets.end());
-      return tets;
-    };
+    const auto& sorted = dtlab::engine::canonical_tetrahedra;
     if (sorted(dtlab::engine::triangulate(points, filtered).tetrahedra) !=
         sorted(result.tetrahedra)) {
       std::abort();
@@ -36,6 +33,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     dtlab::engine::TriangulateOptions walk = options;
     walk.location = dtlab::engine::Location::Walk;
     if (sorted(dtlab::engine::triangulate(points, walk).tetrahedra) != sorted(result.tetrahedra)) {
+      std::abort();
+    }
+    dtlab::engine::TriangulateOptions cavity = walk;
+    cavity.insertion = dtlab::engine::Insertion::Cavity;
+    cavity.check_cavities = true;
+    const auto by_cavity = dtlab::engine::triangulate(points, cavity);
+    if (by_cavity.stats.cavity.fallbacks != 0 ||
+        sorted(by_cavity.tetrahedra) != sorted(result.tetrahedra)) {
       std::abort();
     }
   } catch (const dtlab::engine::TriangulationError&) {

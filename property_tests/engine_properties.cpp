@@ -27,12 +27,13 @@ struct Configuration {
   int threads;
   engine::Repair repair = engine::Repair::None;
   engine::Location location = engine::Location::Dag;
+  engine::Insertion insertion = engine::Insertion::Flips;
 };
 
 std::string name(const Configuration& c) {
   return std::string(engine::to_string(c.kernel)) + "/" + engine::to_string(c.method) + "/" +
          std::to_string(c.threads) + "/repair " + engine::to_string(c.repair) + "/" +
-         engine::to_string(c.location);
+         engine::to_string(c.location) + "/" + engine::to_string(c.insertion);
 }
 
 // kernel x method x threads. The parallel methods run with random delays while locks are held.
@@ -70,15 +71,23 @@ const std::vector<Configuration>& configurations() {
         {KernelKind::Fast, Method::Sequential, 1, engine::Repair::None, engine::Location::Walk});
     v.push_back(
         {KernelKind::Fast, Method::Sequential, 1, engine::Repair::Splay, engine::Location::Walk});
+    // Cavity insertion: every exact kernel sequentially, every method on 2 threads (burglary
+    // unrepaired: its cavities never lose the Delaunay property), the fast kernel alone and
+    // repaired.
+    constexpr auto walk = engine::Location::Walk;
+    constexpr auto cavity = engine::Insertion::Cavity;
+    for (const KernelKind k : {KernelKind::Adaptive, KernelKind::Filtered, KernelKind::Exact}) {
+      v.push_back({k, Method::Sequential, 1, engine::Repair::None, walk, cavity});
+    }
+    for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
+                           Method::Batch, Method::Burglary}) {
+      v.push_back({KernelKind::Adaptive, m, 2, engine::Repair::None, walk, cavity});
+    }
+    v.push_back({KernelKind::Fast, Method::Sequential, 1, engine::Repair::None, walk, cavity});
+    v.push_back({KernelKind::Fast, Method::Sequential, 1, engine::Repair::Splay, walk, cavity});
     return v;
   }();
   return all;
-}
-
-std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
-  for (auto& x : t) std::sort(x.begin(), x.end());
-  std::sort(t.begin(), t.end());
-  return t;
 }
 
 // Decided by CGAL (Triangulation_3, exact predicates), not by the engine's own find_simplex, so
@@ -117,6 +126,7 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   options.stress = config.method != Method::Sequential;
   options.repair = config.repair;
   options.location = config.location;
+  options.insertion = config.insertion;
   if (!tetrahedralizable) {
     RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
     return;
@@ -125,7 +135,7 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
     // May refuse (e.g. a first tetrahedron it sees as flat) or be wrong; must not crash or hang.
     auto& row = fast_failures()[c.family];
     ++row.second;
-    std::vector<io::Tetrahedron> tets;
+    std::vector<engine::Tetrahedron> tets;
     try {
       tets = engine::triangulate(c.points, options).tetrahedra;
     } catch (const engine::TriangulationError&) {
@@ -211,9 +221,9 @@ RC_GTEST_PROP(Invariance, TetrahedraDoNotDependOnSeedOrExactKernel, ()) {
   engine::TriangulateOptions f = a;
   f.seed = a.seed + 2;
   f.kernel = KernelKind::Filtered;
-  const auto exact = canonical(engine::triangulate(c.points, b).tetrahedra);
-  RC_ASSERT(canonical(engine::triangulate(c.points, a).tetrahedra) == exact);
-  RC_ASSERT(canonical(engine::triangulate(c.points, f).tetrahedra) == exact);
+  const auto exact = engine::canonical_tetrahedra(engine::triangulate(c.points, b).tetrahedra);
+  RC_ASSERT(engine::canonical_tetrahedra(engine::triangulate(c.points, a).tetrahedra) == exact);
+  RC_ASSERT(engine::canonical_tetrahedra(engine::triangulate(c.points, f).tetrahedra) == exact);
 }
 
 // Translation by exactly representable offsets and scaling by powers of two keep the
@@ -234,8 +244,8 @@ RC_GTEST_PROP(Invariance, ExactTranslationAndScaling, ()) {
   for (auto& p : moved)
     p = {std::ldexp(p.x + shift, scale), std::ldexp(p.y - shift, scale),
          std::ldexp(p.z + 2 * shift, scale)};
-  RC_ASSERT(canonical(engine::triangulate(c.points, {}).tetrahedra) ==
-            canonical(engine::triangulate(moved, {}).tetrahedra));
+  RC_ASSERT(engine::canonical_tetrahedra(engine::triangulate(c.points, {}).tetrahedra) ==
+            engine::canonical_tetrahedra(engine::triangulate(moved, {}).tetrahedra));
 }
 
 class PrintFastTable : public ::testing::Environment {

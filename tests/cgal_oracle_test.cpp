@@ -26,13 +26,7 @@
 namespace dtlab::test {
 namespace {
 
-std::vector<io::Tetrahedron> sorted_set(std::vector<io::Tetrahedron> tets) {
-  for (auto& t : tets) std::sort(t.begin(), t.end());
-  std::sort(tets.begin(), tets.end());
-  return tets;
-}
-
-std::string show(const std::vector<io::Tetrahedron>& tets, std::size_t limit) {
+std::string show(const std::vector<engine::Tetrahedron>& tets, std::size_t limit) {
   std::ostringstream out;
   for (std::size_t i = 0; i < tets.size() && i < limit; ++i) {
     out << " (" << tets[i][0] << " " << tets[i][1] << " " << tets[i][2] << " " << tets[i][3] << ")";
@@ -43,13 +37,13 @@ std::string show(const std::vector<io::Tetrahedron>& tets, std::size_t limit) {
 
 // Equality of the sorted sets, with a short account of the difference instead of two dumps of
 // thousands of tetrahedra.
-::testing::AssertionResult same_tetrahedra(const std::vector<io::Tetrahedron>& ours,
-                                           const std::vector<io::Tetrahedron>& cgal) {
-  const auto a = sorted_set(ours);
-  const auto b = sorted_set(cgal);
+::testing::AssertionResult same_tetrahedra(const std::vector<engine::Tetrahedron>& ours,
+                                           const std::vector<engine::Tetrahedron>& cgal) {
+  const auto a = engine::canonical_tetrahedra(ours);
+  const auto b = engine::canonical_tetrahedra(cgal);
   if (a == b) return ::testing::AssertionSuccess();
-  std::vector<io::Tetrahedron> only_ours;
-  std::vector<io::Tetrahedron> only_cgal;
+  std::vector<engine::Tetrahedron> only_ours;
+  std::vector<engine::Tetrahedron> only_cgal;
   std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(only_ours));
   std::set_difference(b.begin(), b.end(), a.begin(), a.end(), std::back_inserter(only_cgal));
   return ::testing::AssertionFailure()
@@ -68,17 +62,20 @@ TEST(CgalReference, DimensionAndDuplicates) {
   // One tetrahedron, every corner given twice (and 0.0 as -0.0 once): named by the lowest index.
   const std::vector<Point3> repeated{{0, 0, 1},    {1, 0, 0}, {0, 0, 0}, {0, 1, 0},
                                      {-0.0, 0, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, 0}};
-  EXPECT_EQ(sorted_set(cgal_delaunay(repeated)), (std::vector<io::Tetrahedron>{{0, 1, 2, 3}}));
-  EXPECT_EQ(sorted_set(engine::triangulate(repeated, {}).tetrahedra),
-            (std::vector<io::Tetrahedron>{{0, 1, 2, 3}}));
+  EXPECT_EQ(engine::canonical_tetrahedra(cgal_delaunay(repeated)),
+            (std::vector<engine::Tetrahedron>{{0, 1, 2, 3}}));
+  EXPECT_EQ(engine::canonical_tetrahedra(engine::triangulate(repeated, {}).tetrahedra),
+            (std::vector<engine::Tetrahedron>{{0, 1, 2, 3}}));
   EXPECT_FALSE(all_finite({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, std::nan("")}}));
   EXPECT_THROW(cgal_dimension({{0, 0, 0}, {0, 0, std::numeric_limits<double>::infinity()}}),
                std::invalid_argument);
 }
 
 // Every family, two sizes, three seeds (the seed also drives dtlab's insertion order). The
-// seedless families (grid, lattice) run once per size.
-void every_family_against_cgal(engine::Location location) {
+// seedless families (grid, lattice) run once per size. Cavity insertion runs with every cavity
+// checked (check_cavities): no cavity may fail to be a star around its point with this kernel.
+void every_family_against_cgal(engine::Location location,
+                               engine::Insertion insertion = engine::Insertion::Flips) {
   int compared = 0;
   std::vector<std::string> refused;
   for (const std::string& family : generators::families()) {
@@ -91,6 +88,8 @@ void every_family_against_cgal(engine::Location location) {
         engine::TriangulateOptions options;
         options.seed = seed;
         options.location = location;
+        options.insertion = insertion;
+        options.check_cavities = true;
         const std::string what = family + ":" + std::to_string(n) + " seed " + std::to_string(seed);
         if (cgal_dimension(pts) < 3) {
           EXPECT_THROW(engine::triangulate(pts, options), engine::TriangulationError) << what;
@@ -98,9 +97,14 @@ void every_family_against_cgal(engine::Location location) {
           refused.push_back(what);
           continue;
         }
-        EXPECT_TRUE(
-            same_tetrahedra(engine::triangulate(pts, options).tetrahedra, cgal_delaunay(pts)))
-            << what;
+        const auto result = engine::triangulate(pts, options);
+        EXPECT_TRUE(same_tetrahedra(result.tetrahedra, cgal_delaunay(pts))) << what;
+        EXPECT_EQ(result.stats.cavity.fallbacks, 0u) << what;
+        if (insertion == engine::Insertion::Cavity) {
+          // Every point but the first four and the duplicates entered by its cavity.
+          EXPECT_EQ(result.stats.cavity.insertions + result.stats.duplicates + 4, pts.size())
+              << what;
+        }
         ++compared;
       }
     }
@@ -120,6 +124,11 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedra) {
 // The walk mode (BRIO and Hilbert order, visibility walk, slots reused) on the same sets.
 TEST(CgalOracle, EveryFamilyIdenticalTetrahedraInWalkMode) {
   every_family_against_cgal(engine::Location::Walk);
+}
+
+// Bowyer-Watson insertion (--insertion cavity) on the same sets.
+TEST(CgalOracle, EveryFamilyIdenticalTetrahedraByCavities) {
+  every_family_against_cgal(engine::Location::Walk, engine::Insertion::Cavity);
 }
 
 // Star splaying (issue 12) against CGAL after each of its three uses, on every family with a
@@ -143,7 +152,7 @@ TEST(CgalOracle, EveryFamilyRepairedIdenticalTetrahedra) {
     }
     engine::TriangulateOptions fast;
     fast.kernel = engine::KernelKind::Fast;
-    std::vector<io::Tetrahedron> fast_mesh;
+    std::vector<engine::Tetrahedron> fast_mesh;
     try {
       fast_mesh = engine::triangulate(pts, fast).tetrahedra;
       fast.repair = engine::Repair::Splay;

@@ -28,6 +28,8 @@ expect 2 "dimension" -- triangulate "$dir/three.xyz" -o "$dir/out.ele"
 expect 2 "coplanar" -- triangulate "coplanar:1000" -o "$dir/out.ele"
 expect 2 "collinear" -- triangulate "collinear:1000"
 expect 2 "must end in" -- triangulate "uniform:100" -o "$dir/out.txt"
+expect 2 "needs --location walk" -- triangulate "uniform:100" --insertion cavity
+expect 2 "insertion" -- triangulate "uniform:100" --location walk --insertion bowyer
 expect 2 "" -- triangulate "uniform:100" --predicates nosuch
 expect 2 "" -- predicates-audit "uniform:100" --predicates nosuch
 expect 2 "not in {splay,flips,rebuild}" -- triangulate "uniform:100" --method burglary --repair=bogus

@@ -36,7 +36,7 @@ struct OnePointFixture {
   TriangulationStats stats;
   Dt dt;
   Dt::Outcome outcome;
-  std::vector<io::Tetrahedron> tets;
+  std::vector<engine::Tetrahedron> tets;
 
   void expect_valid_with(std::size_t count) const {
     EXPECT_EQ(tets.size(), count);
@@ -164,12 +164,6 @@ TEST(BadInput, NoTetrahedralizationIsAnError) {
   EXPECT_EQ(r.stats.duplicates, 4u);
 }
 
-std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> tets) {
-  for (auto& t : tets) std::sort(t.begin(), t.end());
-  std::sort(tets.begin(), tets.end());
-  return tets;
-}
-
 TEST(RangeScaling, LosslessAndExpansionRangeByExponent) {
   using engine::adaptive_range_scaling;
   const engine::RangeScaling none = adaptive_range_scaling(0.0, 0.0);
@@ -236,7 +230,8 @@ TEST(WideMagnitudes, AreTriangulatedExactlyByEveryExactKernel) {
       EXPECT_EQ(r.stats.scale_exponent, exact.stats.scale_exponent);
       const auto report = engine::validate(points, r.tetrahedra);
       EXPECT_TRUE(report.valid()) << what << " " << engine::to_string(kernel) << report.json();
-      EXPECT_EQ(canonical(r.tetrahedra), canonical(exact.tetrahedra))
+      EXPECT_EQ(engine::canonical_tetrahedra(r.tetrahedra),
+                engine::canonical_tetrahedra(exact.tetrahedra))
           << what << " " << engine::to_string(kernel);
     }
   }
@@ -306,7 +301,7 @@ class ValidatorCatches : public ::testing::Test {
     ASSERT_TRUE(engine::validate(points, tets).valid());
   }
   std::vector<Point3> points;
-  std::vector<io::Tetrahedron> tets;
+  std::vector<engine::Tetrahedron> tets;
 };
 
 TEST_F(ValidatorCatches, InvertedTetrahedron) {
@@ -338,9 +333,9 @@ TEST(Validator, NonDelaunayPairIsCounted) {
   // Five points in convex position where the 2-tetrahedron split is not Delaunay (the 3-split
   // around the edge from the origin to p is, see Swaps.S23...).
   const std::vector<Point3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.4, 0.4, 0.4}};
-  const std::vector<io::Tetrahedron> two{{0, 1, 2, 3}, {1, 2, 3, 4}};
+  const std::vector<engine::Tetrahedron> two{{0, 1, 2, 3}, {1, 2, 3, 4}};
   // Orient the second one positively.
-  std::vector<io::Tetrahedron> tets = two;
+  std::vector<engine::Tetrahedron> tets = two;
   if (AdaptiveKernel::orient3d(p[1], p[2], p[3], p[4]) < 0) std::swap(tets[1][0], tets[1][1]);
   const auto r = engine::validate(p, tets);
   EXPECT_TRUE(r.consistent()) << r.json();
@@ -430,7 +425,9 @@ TEST(MovedInput, ComesBackUnchangedWithTheSameMesh) {
           if (method == engine::Method::Sequential) {
             EXPECT_EQ(result.tetrahedra, copied.tetrahedra) << what;
           } else {  // the threads' interleaving orders the output differently; the set is unique
-            EXPECT_EQ(canonical(result.tetrahedra), canonical(copied.tetrahedra)) << what;
+            EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra),
+                      engine::canonical_tetrahedra(copied.tetrahedra))
+                << what;
           }
           if (bounding == engine::Bounding::Infinite) {  // aux-tet may lose hull tetrahedra
             EXPECT_TRUE(engine::validate(original, result.tetrahedra).valid()) << what;

@@ -24,12 +24,6 @@ using engine::VertexId;
 using predicates::Point3;
 using Dt = IncrementalDelaunay<predicates::AdaptiveKernel, NoSync>;
 
-std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
-  for (auto& x : t) std::sort(x.begin(), x.end());
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 // A Delaunay mesh of `points` built in a SharedMesh the test can reach, plus forced flips.
 class Relegalize : public ::testing::Test {
  protected:
@@ -47,10 +41,10 @@ class Relegalize : public ::testing::Test {
       ASSERT_NE(dt->insert(v), Dt::Outcome::Abandoned);
     }
     ASSERT_TRUE(engine::validate(points, tets()).valid());
-    delaunay = canonical(tets());
+    delaunay = engine::canonical_tetrahedra(tets());
   }
 
-  [[nodiscard]] std::vector<io::Tetrahedron> tets() const {
+  [[nodiscard]] std::vector<engine::Tetrahedron> tets() const {
     return dt->finite_tetrahedra(static_cast<VertexId>(points.size()));
   }
 
@@ -79,7 +73,7 @@ class Relegalize : public ::testing::Test {
   NoSync sync;
   std::unique_ptr<SharedMesh> mesh;
   std::unique_ptr<Dt> dt;
-  std::vector<io::Tetrahedron> delaunay;
+  std::vector<engine::Tetrahedron> delaunay;
 };
 
 TEST_F(Relegalize, ForcedFlipsBreakTheDelaunayProperty) {
@@ -99,7 +93,7 @@ TEST_F(Relegalize, FlipsOnTheMarksRestoreTheDelaunayMesh) {
       EXPECT_GT(dt->relegalize(marks, false), 0U);
       const auto report = engine::validate(points, tets());
       EXPECT_TRUE(report.valid()) << family << " seed " << seed << report.json();
-      EXPECT_EQ(canonical(tets()), delaunay) << family << " seed " << seed;
+      EXPECT_EQ(engine::canonical_tetrahedra(tets()), delaunay) << family << " seed " << seed;
     }
   }
 }
@@ -131,7 +125,7 @@ TEST_F(Relegalize, MarksAboveTheLiveTetrahedraAreFollowedDown) {
   ASSERT_GT(dead, 0U);
   ASSERT_GT(engine::validate(points, tets()).non_delaunay_faces, 0U);
   EXPECT_GT(dt->relegalize(marks, false), 0U);
-  EXPECT_EQ(canonical(tets()), delaunay);
+  EXPECT_EQ(engine::canonical_tetrahedra(tets()), delaunay);
 }
 
 // Marks that miss the broken faces repair nothing; the sweep over every tetrahedron does.
@@ -143,7 +137,7 @@ TEST_F(Relegalize, WrongMarksLeaveTheFacesAndTheSweepFindsThem) {
   EXPECT_GT(left, 0U);
   EXPECT_GT(dt->relegalize({}, true), 0U);
   EXPECT_TRUE(engine::validate(points, tets()).valid());
-  EXPECT_EQ(canonical(tets()), delaunay);
+  EXPECT_EQ(engine::canonical_tetrahedra(tets()), delaunay);
 }
 
 // Hull faces too: forced flips next to the vertex at infinity make the hull non-convex (reflex
@@ -171,7 +165,7 @@ TEST_F(Relegalize, HullFlipsAreRepaired) {
   EXPECT_TRUE(broken.mesh_consistent()) << broken.json();
   dt->relegalize(marks, false);
   EXPECT_TRUE(engine::validate(points, tets()).valid());
-  EXPECT_EQ(canonical(tets()), delaunay);
+  EXPECT_EQ(engine::canonical_tetrahedra(tets()), delaunay);
 }
 
 }  // namespace

@@ -24,12 +24,6 @@ using engine::Quad;
 using engine::VertexId;
 using predicates::Point3;
 
-std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
-  for (auto& x : t) std::sort(x.begin(), x.end());
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 const char* const kFamilies[] = {
     "uniform",         "normal",     "cluster", "grid",    "sphere", "cospherical",
     "near-duplicates", "duplicates", "planes",  "lattice", "tiny",   "huge"};
@@ -55,7 +49,7 @@ TEST(VertexStar, OfferingEveryPointGivesTheDelaunayStar) {
       std::vector<Quad> removed;
       engine::StarScratch scratch;
       for (VertexId w = 0; w < points.size(); ++w) star.offer(points, w, removed, scratch);
-      std::vector<io::Tetrahedron> finite;
+      std::vector<engine::Tetrahedron> finite;
       for (const Quad& q : star.tetrahedra()) {
         EXPECT_NE(std::find(q.begin(), q.end(), v), q.end());
         if (std::find(q.begin(), q.end(), engine::kInfiniteVertex) == q.end()) {
@@ -65,11 +59,12 @@ TEST(VertexStar, OfferingEveryPointGivesTheDelaunayStar) {
                     0);
         }
       }
-      std::vector<io::Tetrahedron> expected;
+      std::vector<engine::Tetrahedron> expected;
       for (const auto& t : delaunay) {
         if (std::find(t.begin(), t.end(), v) != t.end()) expected.push_back(t);
       }
-      EXPECT_EQ(canonical(finite), canonical(expected)) << family << " vertex " << v;
+      EXPECT_EQ(engine::canonical_tetrahedra(finite), engine::canonical_tetrahedra(expected))
+          << family << " vertex " << v;
     }
   }
 }
@@ -78,21 +73,21 @@ TEST(VertexStar, OfferingEveryPointGivesTheDelaunayStar) {
 TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
   for (const std::string family : kFamilies) {
     const auto points = generators::generate(family, 250, 3).points;
-    const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+    const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     std::mt19937_64 rng(7);
-    std::vector<io::Tetrahedron> garbage;
+    std::vector<engine::Tetrahedron> garbage;
     for (int i = 0; i < 300; ++i) {
-      io::Tetrahedron t{};
+      engine::Tetrahedron t{};
       for (auto& v : t) v = static_cast<VertexId>(rng() % points.size());
       garbage.push_back(t);  // repeated ids, inverted, overlapping: anything
     }
     for (const auto& [name, start] :
-         {std::pair<std::string, std::vector<io::Tetrahedron>>{"nothing", {}},
+         {std::pair<std::string, std::vector<engine::Tetrahedron>>{"nothing", {}},
           {"garbage", garbage},
           {"delaunay", expected}}) {
       engine::SplayStats stats;
       const auto repaired = engine::repair(points, start, stats);
-      EXPECT_EQ(canonical(repaired), expected) << family << " from " << name;
+      EXPECT_EQ(engine::canonical_tetrahedra(repaired), expected) << family << " from " << name;
       EXPECT_TRUE(engine::validate(points, repaired).valid()) << family << " from " << name;
     }
   }
@@ -107,9 +102,9 @@ TEST(SplayTetrahedra, EqualPointsAreOneVertex) {
   points.push_back({0.0, -0.0, 0.0});
   points.push_back(points[3]);
   points.push_back(points[10]);
-  const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+  const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
   engine::SplayStats stats;
-  const auto repaired = canonical(engine::repair(points, {}, stats));
+  const auto repaired = engine::canonical_tetrahedra(engine::repair(points, {}, stats));
   EXPECT_EQ(repaired, expected);
   for (const auto& t : repaired) {
     for (const VertexId v : t) EXPECT_LE(v, 60U) << "a later copy of an equal point is a vertex";
@@ -160,7 +155,7 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
     engine::splay_shared_mesh(dt.mesh(), {}, true, threads, stats);
     EXPECT_EQ(stats.scan_threads, static_cast<std::uint64_t>(threads));
     EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid()) << threads;
-    results.push_back(canonical(dt.finite_tetrahedra(limit)));
+    results.push_back(engine::canonical_tetrahedra(dt.finite_tetrahedra(limit)));
     all_stats.push_back(stats);
   }
   EXPECT_GT(all_stats[0].non_delaunay_faces, 0U);
@@ -177,13 +172,13 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   BrokenMesh broken(points);
   auto& dt = broken.dt;
   const auto limit = static_cast<VertexId>(points.size());
-  const auto expected = canonical(dt.finite_tetrahedra(limit));
+  const auto expected = engine::canonical_tetrahedra(dt.finite_tetrahedra(limit));
   ASSERT_EQ(broken.force_flips(20, 3), 20);
   ASSERT_GT(engine::validate(points, dt.finite_tetrahedra(limit)).non_delaunay_faces, 0U);
   engine::SplayStats stats;
   engine::splay_shared_mesh(dt.mesh(), {}, true, 1, stats);
   EXPECT_GT(stats.non_delaunay_faces, 0U);
-  EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
+  EXPECT_EQ(engine::canonical_tetrahedra(dt.finite_tetrahedra(limit)), expected);
   EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid());
   // Local: 20 flips touch a few dozen vertices, not the 2000.
   EXPECT_LT(stats.stars, 400U) << stats.stars;
@@ -193,7 +188,7 @@ TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {
   engine::splay_shared_mesh(dt.mesh(), {}, true, 2, again);
   EXPECT_EQ(again.non_delaunay_faces, 0U);
   EXPECT_EQ(again.stars, 0U);
-  EXPECT_EQ(canonical(dt.finite_tetrahedra(limit)), expected);
+  EXPECT_EQ(engine::canonical_tetrahedra(dt.finite_tetrahedra(limit)), expected);
 }
 
 // The two sources of the mesh's stars: walks around each vertex (an exactly built mesh) and
@@ -203,7 +198,7 @@ TEST(SplaySharedMesh, WalkedStarsAreTheListedStars) {
   const auto points = generators::generate("cospherical", 3000, 2).points;
   const auto limit = static_cast<VertexId>(points.size());
   std::vector<engine::SplayStats> all_stats;
-  std::vector<std::vector<io::Tetrahedron>> results;
+  std::vector<std::vector<engine::Tetrahedron>> results;
   for (const bool exact_mesh : {true, false}) {
     BrokenMesh broken(points);
     ASSERT_EQ(broken.force_flips(30, 9), 30);
@@ -211,7 +206,7 @@ TEST(SplaySharedMesh, WalkedStarsAreTheListedStars) {
     engine::splay_shared_mesh(broken.dt.mesh(), {}, exact_mesh, 2, stats);
     EXPECT_EQ(stats.stars_walked, exact_mesh);
     EXPECT_TRUE(engine::validate(points, broken.dt.finite_tetrahedra(limit)).valid());
-    results.push_back(canonical(broken.dt.finite_tetrahedra(limit)));
+    results.push_back(engine::canonical_tetrahedra(broken.dt.finite_tetrahedra(limit)));
     all_stats.push_back(stats);
   }
   EXPECT_GT(all_stats[0].non_delaunay_faces, 0U);
@@ -267,7 +262,7 @@ TEST(SplaySharedMesh, MarksAreSeedsOnlyWhereTheScanFoundDamage) {
   };
   {
     BrokenMesh clean(points);
-    const auto expected = canonical(clean.dt.finite_tetrahedra(limit));
+    const auto expected = engine::canonical_tetrahedra(clean.dt.finite_tetrahedra(limit));
     const auto marks = live_tetrahedra(clean.dt.mesh(), 30);
     ASSERT_EQ(marks.size(), 30U);
     engine::SplayStats proven;
@@ -280,21 +275,21 @@ TEST(SplaySharedMesh, MarksAreSeedsOnlyWhereTheScanFoundDamage) {
     engine::splay_shared_mesh(clean.dt.mesh(), marks, false, 1, inexact);
     EXPECT_TRUE(inexact.marks_seeded);
     EXPECT_GT(inexact.seeds, 0U);
-    EXPECT_EQ(canonical(clean.dt.finite_tetrahedra(limit)), expected);
+    EXPECT_EQ(engine::canonical_tetrahedra(clean.dt.finite_tetrahedra(limit)), expected);
   }
   // The same damage (same forced flips) repaired without and with the marks: with them, more
   // seeds, and the same Delaunay mesh.
   std::vector<engine::SplayStats> damaged;
   for (const bool with_marks : {false, true}) {
     BrokenMesh broken(points);
-    const auto expected = canonical(broken.dt.finite_tetrahedra(limit));
+    const auto expected = engine::canonical_tetrahedra(broken.dt.finite_tetrahedra(limit));
     ASSERT_EQ(broken.force_flips(5, 4), 5);
     const auto marks = live_tetrahedra(broken.dt.mesh(), 30);
     engine::SplayStats stats;
     engine::splay_shared_mesh(broken.dt.mesh(), with_marks ? marks : std::vector<engine::TetId>{},
                               true, 1, stats);
     EXPECT_GT(stats.non_delaunay_faces, 0U);
-    EXPECT_EQ(canonical(broken.dt.finite_tetrahedra(limit)), expected);
+    EXPECT_EQ(engine::canonical_tetrahedra(broken.dt.finite_tetrahedra(limit)), expected);
     damaged.push_back(stats);
   }
   EXPECT_FALSE(damaged[0].marks_seeded);
@@ -309,7 +304,7 @@ TEST(SplaySharedMesh, MarksAreSeedsOnlyWhereTheScanFoundDamage) {
 TEST(SplayRepair, FastKernelThenRepairGivesTheDelaunayMesh) {
   for (const std::string family : kFamilies) {
     const auto points = generators::generate(family, 1500, 4).points;
-    const auto expected = canonical(engine::triangulate(points, {}).tetrahedra);
+    const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     for (const auto method : {engine::Method::Sequential, engine::Method::OptimisticDetect,
                               engine::Method::Burglary, engine::Method::Batch}) {
       engine::TriangulateOptions options;
@@ -328,7 +323,7 @@ TEST(SplayRepair, FastKernelThenRepairGivesTheDelaunayMesh) {
         continue;
       }
       EXPECT_TRUE(result.stats.splay.done) << what;
-      EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+      EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
     }
   }
 }

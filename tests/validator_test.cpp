@@ -26,9 +26,9 @@
 namespace dtlab::test {
 namespace {
 
+using engine::Tetrahedron;
 using engine::ValidateWith;
 using engine::ValidationReport;
-using io::Tetrahedron;
 using predicates::Point3;
 
 constexpr std::array<ValidateWith, 2> kKernels{ValidateWith::Adaptive, ValidateWith::Exact};

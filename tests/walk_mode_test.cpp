@@ -23,12 +23,6 @@ namespace {
 using engine::KernelKind;
 using engine::Location;
 
-std::vector<io::Tetrahedron> canonical(std::vector<io::Tetrahedron> t) {
-  for (auto& x : t) std::sort(x.begin(), x.end());
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 // The curve visits every cell of the 2^bits grid once, and consecutive cells share a face.
 TEST(InsertionOrder, HilbertKeysWalkTheGridThroughFaces) {
   for (unsigned bits = 1; bits <= 6; ++bits) {
@@ -120,9 +114,9 @@ TEST(WalkMode, EveryFamilyEveryExactKernelGivesTheDagModesMesh) {
     const auto points = generators::generate(family, 1500, 3).points;
     engine::TriangulateOptions dag;
     dag.seed = 5;
-    std::vector<io::Tetrahedron> expected;
+    std::vector<engine::Tetrahedron> expected;
     try {
-      expected = canonical(engine::triangulate(points, dag).tetrahedra);
+      expected = engine::canonical_tetrahedra(engine::triangulate(points, dag).tetrahedra);
     } catch (const engine::TriangulationError&) {
       engine::TriangulateOptions walk = dag;
       walk.location = Location::Walk;
@@ -136,7 +130,7 @@ TEST(WalkMode, EveryFamilyEveryExactKernelGivesTheDagModesMesh) {
       walk.kernel = kernel;
       const auto result = engine::triangulate(points, walk);
       const std::string what = family + " " + engine::to_string(kernel);
-      EXPECT_EQ(canonical(result.tetrahedra), expected) << what;
+      EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
       EXPECT_EQ(result.stats.walk_fallbacks, 0u) << what;
       EXPECT_EQ(result.stats.dag_nodes, 0u) << what;
       EXPECT_GT(result.stats.location_steps, 0u) << what;
@@ -158,7 +152,7 @@ TEST(WalkMode, AuxiliaryTetrahedronGivesTheDagModesMesh) {
   walk.location = Location::Walk;
   const auto a = engine::triangulate(points, dag);
   const auto b = engine::triangulate(points, walk);
-  EXPECT_EQ(canonical(b.tetrahedra), canonical(a.tetrahedra));
+  EXPECT_EQ(engine::canonical_tetrahedra(b.tetrahedra), engine::canonical_tetrahedra(a.tetrahedra));
   EXPECT_EQ(b.stats.hull_tetrahedra_lost, a.stats.hull_tetrahedra_lost);
 }
 

@@ -5,7 +5,8 @@
 # after the run and valid after --repair=rebuild (flips, then the reported rebuild where they got
 # stuck; the stats say which). Prints one line per failure and a summary; exit 1 on any.
 # Usage: tools/method_gate.sh [N-per-family (5000)] [MAX-MODEL-POINTS (45000)] [SEED (1)]
-# DTLAB_LOCATION=walk runs the sweep in walk mode (default: dag).
+# DTLAB_LOCATION=walk runs the sweep in walk mode (default: dag); DTLAB_INSERTION=cavity, with it,
+# inserts by Bowyer-Watson cavities instead of flips.
 set -uo pipefail
 dtlab="${DTLAB:-build/release/cli/dtlab}"
 data="${DTLAB_DATA:-../shared/data}"
@@ -13,6 +14,7 @@ n="${1:-5000}"
 max_model="${2:-45000}"  # 0: no real models
 seed="${3:-1}"
 location="${DTLAB_LOCATION:-dag}"
+insertion="${DTLAB_INSERTION:-flips}"
 families="${DTLAB_FAMILIES:-uniform normal cluster grid sphere planes cospherical duplicates near-duplicates lattice tiny huge}"
 inputs=()
 for f in $families; do inputs+=("$f:$n"); done
@@ -31,11 +33,11 @@ for input in "${inputs[@]}"; do
       runs=$((runs + 1))
       if [ "$method" = burglary ]; then
         json=$("$dtlab" triangulate "$input" --seed "$seed" --method "$method" --threads "$threads" \
-          --location "$location" --repair=rebuild --validate --stats - 2>"$err")
+          --location "$location" --insertion "$insertion" --repair=rebuild --validate --stats - 2>"$err")
         ok=$(python3 -c 'import json,sys; d=json.load(sys.stdin); print(int(d["post_check"]["mesh_consistent"] and d["validation"]["valid"] and d["abandoned_insertions"]==0))' <<<"$json" 2>/dev/null)
       else
         json=$("$dtlab" triangulate "$input" --seed "$seed" --method "$method" --threads "$threads" \
-          --location "$location" --validate --stats - 2>"$err")
+          --location "$location" --insertion "$insertion" --validate --stats - 2>"$err")
         ok=$(python3 -c 'import json,sys; d=json.load(sys.stdin); print(int(d["validation"]["valid"] and d["abandoned_insertions"]==0))' <<<"$json" 2>/dev/null)
       fi
       if [ "$ok" != 1 ]; then

@@ -58,7 +58,7 @@ std::array<mpz_class, 3> ExactGrid::point(const predicates::Point3& p) const {
 }
 
 mpz_class six_mesh_volume(const std::vector<predicates::Point3>& points,
-                          const std::vector<io::Tetrahedron>& tets, const std::vector<bool>& usable,
+                          const std::vector<Tetrahedron>& tets, const std::vector<bool>& usable,
                           const ExactGrid& grid) {
   std::vector<Grid3> on_grid;
   on_grid.reserve(points.size());

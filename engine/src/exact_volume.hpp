@@ -9,7 +9,7 @@
 #include <array>
 #include <vector>
 
-#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/engine/tetrahedron.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::engine {
@@ -27,7 +27,7 @@ class ExactGrid {
 
 // 6 * det[b - a; c - a; d - a] summed over the tetrahedra marked usable.
 mpz_class six_mesh_volume(const std::vector<predicates::Point3>& points,
-                          const std::vector<io::Tetrahedron>& tets, const std::vector<bool>& usable,
+                          const std::vector<Tetrahedron>& tets, const std::vector<bool>& usable,
                           const ExactGrid& grid);
 
 // 6 * the volume of the convex hull of the points (0 when their affine dimension is below 3).

@@ -6,9 +6,11 @@
 //   mesh_geometry.hpp    orientation and insphere tests, the infinite vertex
 //   point_location.hpp   the DAG descent and the walk
 //   tet_replacement.hpp  replacing tetrahedra by new ones (every split and flip ends there)
+//   cavity_search.hpp    the conflict region of Bowyer-Watson insertion (--insertion cavity)
 //   slot_allocator.hpp   slots for new tetrahedra, reuse of dead ones (walk mode)
 //   optimistic_sync.hpp  the lock methods' locks and undo log (Sync)
-// This file keeps the insertion itself: start, insert, subdivide, legalize and the flips.
+// This file keeps the insertion itself: start, insert, subdivide, legalize and the flips, or in
+// cavity mode the cavity's replacement (flips remain for the points a cavity fails on).
 //
 // The vertex at infinity. Every hull face carries an infinite tetrahedron, so every face has two
 // sides and S22 is the S44 whose ring contains the infinite vertex. For orientation tests the
@@ -30,6 +32,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cavity_search.hpp"
 #include "conflict.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
@@ -68,7 +71,10 @@ class IncrementalDelaunay {
         geometry_(mesh_),
         slots_(mesh_.tets, recycle_, nullptr),
         replacement_(mesh_, *sync_, slots_, !recycle_),
-        locator_(mesh_, options, geometry_, walk_, recycle_, false, Sync::kLocks) {
+        locator_(mesh_, options, geometry_, walk_, recycle_, false, Sync::kLocks),
+        cavity_search_(mesh_, geometry_, *sync_,
+                       options.check_cavities || options.kernel == KernelKind::Fast),
+        cavity_(options.insertion == Insertion::Cavity && recycle_) {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
     mesh_.tets.keep_children(!walk_);
     mesh_.tets.keep_lock_words(Sync::kLocks);
@@ -88,7 +94,10 @@ class IncrementalDelaunay {
         geometry_(mesh_),
         slots_(mesh_.tets, recycle_, reclaimer),
         replacement_(mesh_, *sync_, slots_, !recycle_),
-        locator_(mesh_, options, geometry_, walk_, recycle_, true, Sync::kLocks) {}
+        locator_(mesh_, options, geometry_, walk_, recycle_, true, Sync::kLocks),
+        cavity_search_(mesh_, geometry_, *sync_,
+                       options.check_cavities || options.kernel == KernelKind::Fast),
+        cavity_(options.insertion == Insertion::Cavity && recycle_) {}
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {
@@ -175,6 +184,15 @@ class IncrementalDelaunay {
       return Outcome::Abandoned;
     }
 
+    if (cavity_) {
+      const Outcome replaced = replace_cavity(t, p, o);
+      if (replaced != Outcome::Unlocated) {  // Unlocated here: the cavity failed, use flips
+        stats_.seconds.subdivision += std::chrono::duration<double>(Clock::now() - t1).count();
+        if (replaced == Outcome::GaveUp) return give_up();
+        sync_->commit();
+        return replaced;
+      }
+    }
     const Outcome split = subdivide(t, p, o);
     const auto t2 = Clock::now();
     stats_.seconds.subdivision += std::chrono::duration<double>(t2 - t1).count();
@@ -288,6 +306,29 @@ class IncrementalDelaunay {
       return Outcome::Abandoned;
     }
     return finish_split(replacement_.replace());
+  }
+
+  // Bowyer-Watson insertion of p, located in t (locked): Inserted, Duplicate, GaveUp (a lock
+  // refused, nothing written), or Unlocated when the cavity is not a star around p (an inexact
+  // kernel): nothing written, the caller inserts p by flips, its locks still held.
+  Outcome replace_cavity(TetId t, VertexId p, const std::array<int, 4>& o) {
+    if (std::count(o.begin(), o.end(), 0) == 3) return subdivide(t, p, o);  // on a vertex
+    using Grown = typename CavitySearch<K, Sync>::Grown;
+    const Grown grown = cavity_search_.grow(t, p);
+    if (grown == Grown::GaveUp) return Outcome::GaveUp;
+    if (grown == Grown::Done) {
+      replacement_.begin({});
+      replacement_.old_tets() = cavity_search_.cavity();
+      const Replaced done = replacement_.replace_cavity(p, cavity_search_.boundary());
+      if (done == Replaced::GaveUp) return Outcome::GaveUp;
+      if (done == Replaced::Done) {
+        ++stats_.cavity.insertions;
+        stats_.cavity.tetrahedra_removed += cavity_search_.cavity().size();
+        return Outcome::Inserted;
+      }
+    }
+    ++stats_.cavity.fallbacks;
+    return Outcome::Unlocated;
   }
 
   Outcome finish_split(Replaced done) {
@@ -574,6 +615,8 @@ class IncrementalDelaunay {
   SlotAllocator slots_;
   TetReplacement<Sync> replacement_;
   PointLocator<K> locator_;
+  CavitySearch<K, Sync> cavity_search_;
+  bool cavity_;  // Bowyer-Watson insertion (walk mode with slot reuse only: no DAG to keep)
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)
   std::vector<TetId> stack_;  // legalization: new tetrahedra whose face opposite p is unchecked
 };

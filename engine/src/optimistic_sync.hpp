@@ -251,12 +251,17 @@ class OptimisticSync {
   // that reaches one restarts its descent), then unlocks. New tetrahedra are not logged.
   void rollback() {
     if (mode_ == Mode::Burglary) {
-      // Only ever called before the insertion's first write: nothing to undo.
+      // Only ever called before the insertion's first write: nothing to undo. A victim burgled
+      // there (always so with cavity insertion, whose writes all come after its last lock) lost
+      // nothing: it tries the point again after the burglar's insertion.
       created_.clear();
       own_kills_.clear();
       release_all();
       end_phase();
-      if (burgled()) wait_for_burglar();
+      if (burgled()) {
+        ++stats_.burgled;
+        wait_for_burglar();
+      }
       return;
     }
     for (auto it = log_.rbegin(); it != log_.rend(); ++it) {

@@ -110,6 +110,9 @@ void add_phase_times(TriangulationStats& total, const TriangulationStats& part) 
   total.flips.s32 += part.flips.s32;
   total.flips.s22 += part.flips.s22;
   total.flips.s44 += part.flips.s44;
+  total.cavity.insertions += part.cavity.insertions;
+  total.cavity.tetrahedra_removed += part.cavity.tetrahedra_removed;
+  total.cavity.fallbacks += part.cavity.fallbacks;
 }
 
 // Points not yet inserted by a thread: its own list (static, strips, blocks) or the shared

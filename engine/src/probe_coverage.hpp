@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/engine/tetrahedron.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::engine::detail {
@@ -50,11 +50,10 @@ inline const std::vector<std::array<double, 4>>& probe_weights(bool all) {
 // their centroid.
 template <class K>
 ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
-                             const std::vector<io::Tetrahedron>& tets,
-                             const std::vector<bool>& usable, const std::vector<char>& near_reflex,
-                             std::size_t max_probes) {
+                             const std::vector<Tetrahedron>& tets, const std::vector<bool>& usable,
+                             const std::vector<char>& near_reflex, std::size_t max_probes) {
   using predicates::Point3;
-  auto strictly_inside = [&](const io::Tetrahedron& t, const Point3& q) {
+  auto strictly_inside = [&](const Tetrahedron& t, const Point3& q) {
     const Point3 &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]], &d = pts[t[3]];
     return K::orient3d(q, b, c, d) > 0 && K::orient3d(a, q, c, d) > 0 &&
            K::orient3d(a, b, q, d) > 0 && K::orient3d(a, b, c, q) > 0;
@@ -66,7 +65,7 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
   };
   std::vector<Probe> probes;
   auto add_probes = [&](std::size_t i, bool all) {
-    const io::Tetrahedron& t = tets[i];
+    const Tetrahedron& t = tets[i];
     for (const auto& w : probe_weights(all)) {
       if (probes.size() >= max_probes) return;
       // Weights are powers of two or their sums: each product is exact unless it underflows; the
@@ -87,7 +86,7 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
   std::vector<char> taken(tets.size(), 0);
   for (std::size_t i = 0; i < tets.size() && probes.size() < max_probes; ++i) {
     if (!usable[i]) continue;
-    const io::Tetrahedron& t = tets[i];
+    const Tetrahedron& t = tets[i];
     if (near_reflex[t[0]] != 0 || near_reflex[t[1]] != 0 || near_reflex[t[2]] != 0 ||
         near_reflex[t[3]] != 0) {
       add_probes(i, true);
@@ -143,7 +142,7 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
   std::uint64_t work = 0;
   // Tests tetrahedron i against the probes in its box; false when the budget ran out.
   auto scan = [&](std::size_t i) {
-    const io::Tetrahedron& t = tets[i];
+    const Tetrahedron& t = tets[i];
     Point3 tlo = pts[t[0]];
     Point3 thi = pts[t[0]];
     for (std::size_t k = 1; k < 4; ++k) {

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "cavity_edges.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "shared_mesh.hpp"
 #include "slot_allocator.hpp"
@@ -323,6 +324,45 @@ class TetReplacement {
     return commit_replacement();
   }
 
+  // Bowyer-Watson's replacement (cavity_search.hpp): the cavity, in old_tets(), by p joined to
+  // each boundary face, in `boundary`'s order. New tetrahedron j is its face's inside
+  // tetrahedron with the vertex at `face` replaced by p: its face there is the boundary face, and
+  // each of its three other faces holds p and one edge of the boundary face, shared with the one
+  // other new tetrahedron on that edge (the boundary of a star-shaped cavity is a sphere: every
+  // edge on exactly two faces). Those are paired through a table of edges. Impossible, nothing
+  // written, when an edge is not on exactly two boundary faces (an inexact kernel's cavity).
+  template <class Face>
+  Replaced replace_cavity(VertexId p, const std::vector<Face>& boundary) {
+    const std::size_t n = boundary.size();
+    scratch_new_.resize(n);
+    scratch_parent_.assign(n, -1);
+    matched_.resize(4 * n);
+    edges_.begin(3 * n);
+    bool third_face = false;
+    for (std::size_t j = 0; j < n; ++j) {
+      const Face& b = boundary[j];
+      Quad& q = scratch_new_[j];
+      q = mesh_.tets[b.inside].vertex;
+      q[static_cast<std::size_t>(b.face)] = p;
+      matched_[4 * j + static_cast<std::size_t>(b.face)] = {b.outside, false, true};
+      for (int g = 0; g < 4; ++g) {
+        if (g == b.face) continue;
+        // The edge of face g without p: q's vertices at the two positions other than b.face, g.
+        const auto& [u, w] =
+            kOtherTwo[static_cast<std::size_t>(b.face)][static_cast<std::size_t>(g)];
+        const auto self = static_cast<FaceRef>(4 * j + static_cast<std::size_t>(g));
+        const FaceRef partner = edges_.pair(q[u], q[w], self, third_face);
+        // Branch-free: partner == self while the edge's second face is still to come (that face
+        // writes both entries then).
+        matched_[self] = {partner, true, true};
+        matched_[partner] = {self, true, true};
+      }
+    }
+    // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them.
+    if (third_face || 2 * edges_.size() != 3 * n) return Replaced::Impossible;
+    return commit_replacement();
+  }
+
   Replaced commit_replacement() {
     // Every tetrahedron written below is locked first: the outside neighbours get new back
     // references (the old ones are locked already), and the undo log sees each before its first
@@ -533,6 +573,14 @@ class TetReplacement {
   std::vector<int> copy_of_;
   std::vector<int> source_old_;
   std::vector<char> boundary_used_;
+  // kOtherTwo[a][g]: the two positions of a tetrahedron other than a and g (a != g).
+  static constexpr std::array<std::array<std::array<std::size_t, 2>, 4>, 4> kOtherTwo{{
+      {{{0, 0}, {2, 3}, {1, 3}, {1, 2}}},
+      {{{2, 3}, {0, 0}, {0, 3}, {0, 2}}},
+      {{{1, 3}, {0, 3}, {0, 0}, {0, 1}}},
+      {{{1, 2}, {0, 2}, {0, 1}, {0, 0}}},
+  }};
+  CavityEdges edges_;  // replace_cavity's scratch
 };
 
 }  // namespace dtlab::engine

@@ -149,13 +149,6 @@ std::vector<Tetrahedron> dispatch(const std::vector<Point3>& points, std::size_t
                                                 options, stats);
 }
 
-// Canonical form of a tetrahedron (sorted ids) for comparing meshes.
-std::vector<Tetrahedron> canonical(std::vector<Tetrahedron> tets) {
-  for (auto& t : tets) std::sort(t.begin(), t.end());
-  std::sort(tets.begin(), tets.end());
-  return tets;
-}
-
 // Each set of equal input points is named by its lowest index (as SharedMesh::finite_tetrahedra
 // does in the engine's own numbering, which the walk mode's renumbering changes).
 void name_duplicates_by_lowest_index(const std::vector<Point3>& input,
@@ -226,6 +219,15 @@ const char* to_string(Bounding b) {
 const char* to_string(Location l) {
   return l == Location::Walk ? "walk" : "dag";
 }
+std::vector<Tetrahedron> canonical_tetrahedra(std::vector<Tetrahedron> tets) {
+  for (auto& t : tets) std::sort(t.begin(), t.end());
+  std::sort(tets.begin(), tets.end());
+  return tets;
+}
+
+const char* to_string(Insertion i) {
+  return i == Insertion::Cavity ? "cavity" : "flips";
+}
 const char* to_string(Method m) {
   switch (m) {
     case Method::Sequential:
@@ -287,6 +289,12 @@ namespace {
 Triangulation triangulate_in_place(std::vector<Point3>& points, const TriangulateOptions& options,
                                    const std::vector<Point3>* as_given) {
   const auto start = Clock::now();
+  if (options.insertion == Insertion::Cavity && options.location != Location::Walk) {
+    // A cavity's tetrahedra have more successors than the history DAG's four children.
+    throw std::invalid_argument(
+        "--insertion cavity needs --location walk (the DAG mode's history "
+        "keeps at most four children a tetrahedron)");
+  }
   Triangulation result;
   TriangulationStats& stats = result.stats;
   const std::size_t input_count = points.size();
@@ -420,8 +428,8 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
     reference.bounding = Bounding::Infinite;
     reference.audit = false;
     reference.progress = false;
-    const auto exact = canonical(triangulate(input, reference).tetrahedra);
-    const auto aux = canonical(result.tetrahedra);
+    const auto exact = canonical_tetrahedra(triangulate(input, reference).tetrahedra);
+    const auto aux = canonical_tetrahedra(result.tetrahedra);
     std::vector<Tetrahedron> lost;
     std::set_difference(exact.begin(), exact.end(), aux.begin(), aux.end(),
                         std::back_inserter(lost));
@@ -458,6 +466,9 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"other", s.seconds.other}};
   j["flips"] = {
       {"S23", s.flips.s23}, {"S32", s.flips.s32}, {"S22", s.flips.s22}, {"S44", s.flips.s44}};
+  j["cavity"] = {{"insertions", s.cavity.insertions},
+                 {"tetrahedra_removed", s.cavity.tetrahedra_removed},
+                 {"fallbacks", s.cavity.fallbacks}};
   j["dag_nodes"] = s.dag_nodes;
   j["predicate_calls"] = s.predicate_calls;
   j["location_steps"] = s.location_steps;
@@ -564,6 +575,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   j["distribution"] = to_string(effective_distribution(options));
   j["predicates"] = to_string(options.kernel);
   j["location"] = to_string(options.location);
+  j["insertion"] = to_string(options.insertion);
   j["bounding"] = to_string(options.bounding);
   j["seed"] = options.seed;
   return j.dump(2);

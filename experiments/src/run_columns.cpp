@@ -16,7 +16,7 @@ const std::vector<std::string> kRunColumns = {
     "hardware_threads", "oversubscribed", "seconds_wall", "commit", "finished_utc"};
 
 // The options that stats_json does not write (it writes method, threads, distribution,
-// predicates, location, bounding, repair and seed).
+// predicates, location, insertion, bounding, repair and seed).
 const std::vector<std::string> kOptionColumns = {"options.max_flips_per_insertion",
                                                  "options.max_location_steps",
                                                  "options.watchdog_seconds",
@@ -82,12 +82,14 @@ std::string run_key(const RunSpec& spec) {
   const bool split = spec.engine == Engine::Dtlab && o.method != engine::Method::Sequential;
   const std::string distribution =
       split ? std::string("/") + engine::to_string(engine::effective_distribution(o)) : "";
+  // Cavity insertion only (flips keys stay as they were).
+  const std::string cavity = o.insertion == engine::Insertion::Cavity ? "/cavity" : "";
   return spec.input + ":" + std::to_string(spec.size) + "/" + spec.variant + "/" +
          to_string(spec.engine) + "/" + engine::to_string(o.method) + "/" +
          std::to_string(o.threads) + "t/" + engine::to_string(o.kernel) + "/" +
          engine::to_string(o.location) + "/" + engine::to_string(o.bounding) + "/" +
          engine::to_string(o.repair) + "/seed" + std::to_string(o.seed) + "/round" +
-         std::to_string(spec.round) + distribution;
+         std::to_string(spec.round) + distribution + cavity;
 }
 
 }  // namespace dtlab::experiments

@@ -137,6 +137,7 @@ void add_run_cells(const std::string& study, const RunSpec& spec, unsigned hardw
   fill("method", engine::to_string(o.method));
   fill("predicates", engine::to_string(o.kernel));
   fill("location", engine::to_string(o.location));
+  fill("insertion", engine::to_string(o.insertion));
   fill("bounding", engine::to_string(o.bounding));
   fill("repair", engine::to_string(o.repair));
   fill("distribution", engine::to_string(engine::effective_distribution(o)));

@@ -1,4 +1,5 @@
-// compare: dtlab (walk and DAG, sequential; the lock methods in walk mode) against CGAL's
+// compare: dtlab (walk and DAG, sequential; the lock methods in walk mode; the walk mode with
+// flips and with cavity insertion) against CGAL's
 // Delaunay_triangulation_3 (sequential; parallel with TBB at the same thread count) on the same
 // points, in interleaved rounds, each run in its own process: time, throughput, peak memory.
 #include <algorithm>
@@ -30,6 +31,11 @@ std::vector<RunSpec> plan(const StudyParams& p) {
               spec.options.location = location;
               spec.variant = std::string("dtlab ") + engine::to_string(location);
               runs.push_back(spec);
+              if (location == engine::Location::Walk) {
+                spec.options.insertion = engine::Insertion::Cavity;
+                spec.variant = "dtlab walk cavity";
+                runs.push_back(spec);
+              }
             }
             RunSpec cgal = base;
             cgal.engine = Engine::CgalSequential;
@@ -52,6 +58,9 @@ std::vector<RunSpec> plan(const StudyParams& p) {
                 spec.options.threads = threads;
                 spec.options.distribution = p.distribution;  // auto: blocks in walk mode
                 spec.variant = std::string("dtlab walk ") + engine::to_string(method);
+                runs.push_back(spec);
+                spec.options.insertion = engine::Insertion::Cavity;
+                spec.variant = std::string("dtlab walk cavity ") + engine::to_string(method);
                 runs.push_back(spec);
               }
               if (cgal_parallel_available()) {
@@ -104,8 +113,8 @@ std::string summarize(const CsvTable& t) {
 
 Study compare_study() {
   return {"compare",
-          "dtlab (walk, DAG, the lock methods) against CGAL (sequential and parallel) on the "
-          "same points: time, throughput, peak memory",
+          "dtlab (walk with flips or cavities, DAG, the lock methods) against CGAL (sequential "
+          "and parallel) on the same points: time, throughput, peak memory",
           {3,
            2,
            {2},

@@ -6,12 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/engine/tetrahedron.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::engine {
 
-using io::Tetrahedron;
 using predicates::Point3;
 
 enum class KernelKind { Fast, Adaptive, Filtered, Exact };
@@ -25,6 +24,9 @@ enum class Bounding { Infinite, AuxTet };
 // Dag: the paper's history DAG from a random order. Walk: BRIO rounds in Hilbert order and a
 // visibility walk from the last insertion, dead slots reused (docs/design.md, "Walk mode").
 enum class Location { Dag, Walk };
+// How a located point enters the mesh: the paper's 1->4 / 2->6 / k->2k split and flips, or
+// (walk mode only) Bowyer-Watson's cavity: every tetrahedron in conflict replaced at once.
+enum class Insertion { Flips, Cavity };
 // The repair after a run: none; star splaying from the marked tetrahedra and every non-Delaunay
 // face or bad tetrahedron, exact, for any method and kernel (Splay: --repair, always ends in the
 // Delaunay tetrahedralization, no rebuild); burglary's post-check as the paper has it, Lawson flips
@@ -36,6 +38,7 @@ enum class Repair { None, Flips, Rebuild, Splay };
 const char* to_string(KernelKind k);
 const char* to_string(Bounding b);
 const char* to_string(Location l);
+const char* to_string(Insertion i);
 const char* to_string(Method m);
 const char* to_string(Distribution d);
 const char* to_string(Repair r);
@@ -44,6 +47,11 @@ struct TriangulateOptions {
   KernelKind kernel = KernelKind::Adaptive;
   Bounding bounding = Bounding::Infinite;
   Location location = Location::Dag;
+  Insertion insertion = Insertion::Flips;
+  // Cavity insertion: check that every new tetrahedron is positive, and insert by flips where
+  // one is not (counted in stats.cavity.fallbacks). Always on with the fast kernel; with an exact
+  // one the check never fails (cavity_search.hpp), which the tests confirm with it on.
+  bool check_cavities = false;
   std::uint64_t seed = 1;
   // Bounds that keep the fast kernel from hanging: a breach abandons the insertion and counts it.
   std::uint64_t max_flips_per_insertion = 1'000'000;
@@ -76,6 +84,14 @@ struct FlipCounts {
   std::uint64_t s32 = 0;
   std::uint64_t s22 = 0;
   std::uint64_t s44 = 0;
+};
+
+// Cavity insertion (--insertion cavity).
+struct CavityCounts {
+  std::uint64_t insertions = 0;          // points inserted by their cavity
+  std::uint64_t tetrahedra_removed = 0;  // the cavities' tetrahedra, summed
+  std::uint64_t fallbacks = 0;  // cavities that were no star around the point (inexact kernel):
+                                // inserted by flips
 };
 
 struct PhaseSeconds {
@@ -153,6 +169,7 @@ struct TriangulationStats {
   std::uint64_t tetrahedra = 0;
   PhaseSeconds seconds;
   FlipCounts flips;
+  CavityCounts cavity;
   std::uint64_t dag_nodes = 0;
   std::uint64_t predicate_calls = 0;
   std::uint64_t location_steps = 0;  // DAG nodes descended or tetrahedra walked through
@@ -190,6 +207,9 @@ Triangulation triangulate(const std::vector<Point3>& points, const TriangulateOp
 // Triangulation::points. When it throws, `points` holds them as given (unless memory runs out
 // while they are put back: the reordering is undone through a second array).
 Triangulation triangulate(std::vector<Point3>&& points, const TriangulateOptions& options);
+
+// The tetrahedra in a canonical form for comparing meshes: each one's ids sorted, then the list.
+std::vector<Tetrahedron> canonical_tetrahedra(std::vector<Tetrahedron> tets);
 
 // The stats and the options as one JSON object (the --stats output).
 std::string stats_json(const TriangulationStats& stats, const TriangulateOptions& options,

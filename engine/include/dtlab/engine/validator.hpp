@@ -6,12 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/engine/tetrahedron.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::engine {
 
-using io::Tetrahedron;
 using predicates::Point3;
 
 struct ValidationReport {

@@ -12,6 +12,8 @@
 namespace dtlab::io {
 
 using predicates::Point3;
+// Four point ids: the same type as engine::Tetrahedron (the engine's output), named here so
+// that io does not depend on the engine.
 using Tetrahedron = std::array<std::uint32_t, 4>;
 
 // A named per-tetrahedron array for the .vtu (e.g. "non_delaunay", "suspicious").

@@ -1,0 +1,71 @@
+#pragma once
+// The pairing of a cavity's boundary edges (TetReplacement::replace_cavity): each edge of the
+// cavity's boundary lies on two boundary faces, and the two new tetrahedra on them share the face
+// made of p and that edge. A hash table keyed by the edge's two vertex ids, emptied in O(1) by an
+// epoch, whose common path has no data-dependent branch: whether an edge is met for the first or
+// the second time is as unpredictable as a coin, and a mispredicted branch per edge cost more than
+// the rest of the table.
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "dtlab/engine/tet_mesh.hpp"
+
+namespace dtlab::engine {
+
+class CavityEdges {
+ public:
+  // Empties the table for a cavity with at most `faces` edge entries (3 per boundary face).
+  void begin(std::size_t faces) {
+    std::size_t size = entries_.empty() ? 256 : entries_.size();
+    while (size < 4 * faces) size *= 2;  // load at most 1/4 (with each edge entered once: 1/8)
+    if (size != entries_.size()) {
+      entries_.assign(size, Entry{});
+      shift_ = 64 - __builtin_ctzll(size);
+      epoch_ = 0;
+    }
+    if (++epoch_ == 0) {  // wrapped: entries of an old epoch could look current
+      for (Entry& e : entries_) e.epoch = 0;
+      epoch_ = 1;
+    }
+    distinct_ = 0;
+  }
+
+  // New face `self` lies on edge xy. Returns the face met on xy before (and marks the edge paired),
+  // or `self` when xy is new. `third` is set when the edge was paired already.
+  FaceRef pair(VertexId x, VertexId y, FaceRef self, bool& third) {
+    if (x > y) std::swap(x, y);
+    const std::uint64_t key = (static_cast<std::uint64_t>(x) << 32) | y;
+    std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> shift_);
+    // Past other edges' entries (rare at this load): a predictable branch.
+    while (entries_[i].epoch == epoch_ && entries_[i].key != key) {
+      i = (i + 1) & (entries_.size() - 1);
+    }
+    Entry& e = entries_[i];
+    const bool seen = e.epoch == epoch_;
+    const bool paired = seen && e.ref == kPaired;
+    third = third || paired;
+    const FaceRef partner = seen && !paired ? e.ref : self;
+    distinct_ += seen ? 0 : 1;
+    e = {key, epoch_, seen ? kPaired : self};
+    return partner;
+  }
+
+  // The edges entered since begin().
+  [[nodiscard]] std::size_t size() const { return distinct_; }
+
+ private:
+  static constexpr FaceRef kPaired = 0xFFFFFFFFu;
+  struct Entry {
+    std::uint64_t key = 0;
+    std::uint32_t epoch = 0;
+    FaceRef ref = 0;
+  };
+  std::vector<Entry> entries_;
+  std::uint32_t epoch_ = 0;
+  std::size_t distinct_ = 0;
+  int shift_ = 64 - 8;
+};
+
+}  // namespace dtlab::engine
