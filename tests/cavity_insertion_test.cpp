@@ -1,10 +1,12 @@
 // Cavity insertion (--insertion cavity, Bowyer-Watson): the pairing of a cavity's boundary edges,
-// the mode's rules (walk mode only), its stats, and its result against the flips' on every
-// kernel; the fast kernel's cavities that are no star fall back to flips, and star splaying
-// repairs what that kernel leaves. The result against CGAL is in cgal_oracle_test.cpp, every
-// method in parallel_test.cpp.
+// the search's table of tested tetrahedra, the mode's rules (walk mode only), its stats, and its
+// result against the flips' on every kernel; the fast kernel's cavities that are no star fall back
+// to flips, and star splaying repairs what that kernel leaves. The result against CGAL is in
+// cgal_oracle_test.cpp, every method in parallel_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
+#include "epoch_table.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -48,6 +51,7 @@ TEST(CavityEdges, PairsTheTwoFacesOfEachEdge) {
 
 TEST(CavityEdges, GrowsForLargeCavitiesAndKeepsEveryPair) {
   CavityEdges edges;
+  std::size_t largest = 0;
   for (const std::size_t n : {std::size_t{10}, std::size_t{5000}, std::size_t{10}}) {
     edges.begin(2 * n);
     bool third = false;
@@ -59,7 +63,51 @@ TEST(CavityEdges, GrowsForLargeCavitiesAndKeepsEveryPair) {
     }
     EXPECT_FALSE(third);
     EXPECT_EQ(edges.size(), n);
+    // The table in use fits this cavity (load at most 1/4), whatever an earlier one needed; the
+    // memory of the largest is kept.
+    EXPECT_GE(edges.used_capacity(), 4 * 2 * n);
+    EXPECT_LE(edges.used_capacity(), std::max<std::size_t>(256, 16 * n));
+    largest = std::max(largest, edges.used_capacity());
+    EXPECT_EQ(edges.allocated_capacity(), largest);
   }
+}
+
+// The cavity search's marks: every key inserted is found with its value, across growth (200 to
+// 5000 keys, from 256 entries) and across clear(), which forgets every key, shrinks the table in
+// use back to its smallest and keeps the memory; many clears in a row never let an old key
+// reappear.
+TEST(EpochTable, FindsWhatWasInsertedAcrossGrowthAndClears) {
+  engine::EpochTable<std::uint32_t, bool> table;
+  std::size_t largest = 0;
+  for (const std::uint32_t n : {200u, 5000u, 3u, 1000u}) {
+    table.clear();
+    EXPECT_EQ(table.size(), 0u);
+    EXPECT_EQ(table.used_capacity(), 256u);
+    // Keys from the last round are gone.
+    for (std::uint32_t k = 0; k < 5000; k += 7) {
+      EXPECT_EQ(table.find(k * 2654435761u + 1), nullptr) << n << " " << k;
+    }
+    for (std::uint32_t k = 0; k < n; ++k) table.insert(k * 2654435761u + 1, k % 3 == 0);
+    EXPECT_EQ(table.size(), n);
+    EXPECT_GE(table.used_capacity(), 2 * std::size_t{n});
+    largest = std::max(largest, table.used_capacity());
+    EXPECT_EQ(table.allocated_capacity(), largest);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const bool* value = table.find(k * 2654435761u + 1);
+      ASSERT_NE(value, nullptr) << n << " " << k;
+      EXPECT_EQ(*value, k % 3 == 0) << n << " " << k;
+    }
+    EXPECT_EQ(table.find(n * 2654435761u + 1), nullptr);
+    // Found values can be changed in place.
+    *table.find(1) = true;
+    EXPECT_TRUE(*table.find(1));
+    *table.find(1) = false;
+    EXPECT_FALSE(*table.find(1));
+  }
+  for (int i = 0; i < 100000; ++i) table.clear();
+  EXPECT_EQ(table.find(1), nullptr);
+  table.insert(1, true);
+  EXPECT_TRUE(*table.find(1));
 }
 
 TEST(CavityInsertion, NeedsTheWalkMode) {

@@ -107,45 +107,57 @@ TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
 // Cavity insertion: every method, burglary included, gives the unique tetrahedralization with no
 // repair. A cavity's search locks every tetrahedron it reads before anything is written, so a
 // thread is burgled (or gives up) only before its first write: burglary then costs a retry, never
-// the Delaunay property. Burglary's post-check must find nothing.
+// the Delaunay property. Burglary's post-check must find nothing, and some burglary must have
+// happened, or that check was empty: when the runs over every family found none, more burglary
+// seeds on the grid (each checked in full) are run until one does, up to 16.
 TEST(ParallelMethods, CavityInsertionEveryMethodGivesTheUniqueMesh) {
   std::uint64_t burglaries = 0;
   std::uint64_t burgled = 0;
+  auto run = [&](const std::string& family, const std::vector<Point3>& points,
+                 const std::vector<engine::Tetrahedron>& expected, Method m, int threads,
+                 std::uint64_t seed) {
+    engine::TriangulateOptions options;
+    options.location = engine::Location::Walk;
+    options.insertion = engine::Insertion::Cavity;
+    options.method = m;
+    options.threads = threads;
+    options.stress = true;
+    options.seed = seed;
+    options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
+    const auto result = engine::triangulate(points, options);
+    const std::string what = family + " " + engine::to_string(m) + " " + std::to_string(threads) +
+                             " seed " + std::to_string(seed);
+    EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
+    EXPECT_EQ(result.stats.cavity.fallbacks, 0u) << what;
+    EXPECT_GT(result.stats.cavity.insertions, 0u) << what;
+    EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+    if (m == Method::Burglary) {
+      const engine::PostCheck& check = result.stats.post_check;
+      EXPECT_TRUE(check.done) << what;
+      EXPECT_EQ(check.non_delaunay_faces, 0u) << what;
+      EXPECT_TRUE(check.mesh_consistent) << what;
+      for (const ThreadStats& t : result.stats.threads) {
+        EXPECT_EQ(t.potential_problems, 0u) << what;
+        EXPECT_EQ(t.suspicious_tetrahedra, 0u) << what;
+        burglaries += t.burglaries;
+        burgled += t.burgled;
+      }
+    }
+  };
   for (const std::string family : {"uniform", "grid", "sphere", "duplicates"}) {
     const auto points = generators::generate(family, 800, 8).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
                            Method::Batch, Method::Burglary}) {
-      for (const int threads : {2, 4}) {
-        engine::TriangulateOptions options;
-        options.location = engine::Location::Walk;
-        options.insertion = engine::Insertion::Cavity;
-        options.method = m;
-        options.threads = threads;
-        options.stress = true;
-        options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
-        const auto result = engine::triangulate(points, options);
-        const std::string what =
-            family + " " + engine::to_string(m) + " " + std::to_string(threads);
-        EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
-        EXPECT_EQ(result.stats.cavity.fallbacks, 0u) << what;
-        EXPECT_GT(result.stats.cavity.insertions, 0u) << what;
-        EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
-        if (m == Method::Burglary) {
-          const engine::PostCheck& check = result.stats.post_check;
-          EXPECT_TRUE(check.done) << what;
-          EXPECT_EQ(check.non_delaunay_faces, 0u) << what;
-          EXPECT_TRUE(check.mesh_consistent) << what;
-          for (const ThreadStats& t : result.stats.threads) {
-            EXPECT_EQ(t.potential_problems, 0u) << what;
-            EXPECT_EQ(t.suspicious_tetrahedra, 0u) << what;
-            burglaries += t.burglaries;
-            burgled += t.burgled;
-          }
-        }
-      }
+      for (const int threads : {2, 4}) run(family, points, expected, m, threads, 1);
     }
   }
+  const auto grid = generators::generate("grid", 800, 8).points;
+  const auto grid_expected = engine::canonical_tetrahedra(engine::triangulate(grid, {}).tetrahedra);
+  for (std::uint64_t seed = 2; burglaries == 0 && seed <= 17; ++seed) {
+    run("grid", grid, grid_expected, Method::Burglary, 4, seed);
+  }
+  EXPECT_GT(burglaries, 0u);
   // Every burglary has a victim, counted when it rolls back.
   EXPECT_EQ(burgled, burglaries);
   std::printf("cavity insertion, burglary: %llu burglaries\n",
@@ -153,21 +165,23 @@ TEST(ParallelMethods, CavityInsertionEveryMethodGivesTheUniqueMesh) {
 }
 
 // Burglary may lose the Delaunay property, never the mesh: after the run the mesh is sound (the
-// post-check's validation says so, and the test validates again). The repair's flips are judged
-// by themselves, without the rebuild: on grid data, where they never got stuck (0 of 9 runs of
-// the burglary table in docs/experiments.md, 0 of 110 runs of grid:1500 at 2 and 4 threads with
-// --stress), they must give the unique Delaunay tetrahedralization; elsewhere (uniform got stuck
-// in 2 of 30 such runs) what they leave is reported exactly. Star splaying (Repair::Splay) always
-// ends Delaunay.
+// post-check's validation says so, and the test validates again). Lawson flips in 3D may get stuck
+// on any family (grid too: once in CI under AddressSanitizer, grid:1500, 4 threads, seed 1, 14
+// faces left, where 0 of 80 release runs at 2 and 4 threads did), so the repair's flips are held
+// to what they promise: a sound mesh, what they leave reported exactly, and the unique Delaunay
+// tetrahedralization whenever they leave nothing. At least one grid run must have been damaged
+// and repaired to the end by the flips alone, or that last check was empty. Star splaying
+// (Repair::Splay) and the rebuild always end in the unique mesh.
 TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   const int n = 1500;
   std::uint64_t burglaries = 0;
-  std::uint64_t damaged = 0;       // non-Delaunay faces the flips had to repair (grid)
+  std::uint64_t damaged = 0;       // non-Delaunay faces the flips repaired to the end (grid)
   std::uint64_t repair_flips = 0;  // and the flips they made
+  int stuck = 0;                   // grid runs whose flips got stuck
   auto run = [&](const std::string& family, const std::vector<Point3>& points,
                  const std::vector<engine::Tetrahedron>& expected, int threads,
                  engine::Repair repair, std::uint64_t seed) {
-    const bool flips_suffice = family == "grid";
+    const bool grid = family == "grid";
     engine::TriangulateOptions options;
     options.method = Method::Burglary;
     options.threads = threads;
@@ -195,14 +209,17 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
         break;
       case engine::Repair::Flips:
         EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
-        if (flips_suffice) {
-          EXPECT_EQ(check.non_delaunay_after_flips, 0u) << what;
-          damaged += check.non_delaunay_faces;
-          repair_flips += check.repair_flips;
-        }
+        EXPECT_FALSE(check.rebuilt) << what;
+        EXPECT_EQ(check.non_delaunay_after_flips, check.non_delaunay_after) << what;
         // Delaunay means the unique (perturbed) Delaunay tetrahedralization.
         if (check.non_delaunay_after == 0) {
           EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+          if (grid) {
+            damaged += check.non_delaunay_faces;
+            repair_flips += check.repair_flips;
+          }
+        } else if (grid) {
+          ++stuck;
         }
         break;
       case engine::Repair::Splay:
@@ -214,11 +231,8 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
         break;
       case engine::Repair::Rebuild:
         EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
-        if (flips_suffice) {
-          EXPECT_FALSE(check.rebuilt) << what;
-          damaged += check.non_delaunay_faces;
-          repair_flips += check.repair_flips;
-        }
+        // The rebuild is taken exactly when the flips left faces.
+        EXPECT_EQ(check.rebuilt, check.non_delaunay_after_flips > 0) << what;
         EXPECT_TRUE(report.valid()) << what << report.json();
         EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
         break;
@@ -237,10 +251,10 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
     }
   }
   // Oversubscribed threads with delays while locks are held: deadlocks do happen, and the flips
-  // on grid data must have had something to repair, or the checks of their result above are
-  // empty. A grid run leaves faces about 5 times in 6 (release build, 2 and 4 threads); the 4
+  // on grid data must have repaired some damage to the end, or the check of their result above
+  // is empty. A grid run leaves faces about 5 times in 6 (release build, 2 and 4 threads); the
   // runs above all left none once under AddressSanitizer beside another test, so more seeds
-  // (each checked in full) are run until one does, up to 16.
+  // (each checked in full) are run until one is damaged and repaired, up to 16.
   const auto grid = generators::generate("grid", n, 5).points;
   const auto grid_expected = engine::canonical_tetrahedra(engine::triangulate(grid, {}).tetrahedra);
   for (std::uint64_t seed = 2; damaged == 0 && seed <= 17; ++seed) {
@@ -249,6 +263,7 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   EXPECT_GT(burglaries, 0u);
   EXPECT_GT(damaged, 0u);
   EXPECT_GT(repair_flips, 0u);
+  std::printf("burglary, grid: %d runs whose flips got stuck\n", stuck);
 }
 
 // The fast kernel contradicts itself on inexact near-degenerate input. Its insertions whose

@@ -16,15 +16,16 @@ namespace dtlab::engine {
 
 class CavityEdges {
  public:
-  // Empties the table for a cavity with at most `faces` edge entries (3 per boundary face).
-  void begin(std::size_t faces) {
-    std::size_t size = entries_.empty() ? 256 : entries_.size();
-    while (size < 4 * faces) size *= 2;  // load at most 1/4 (with each edge entered once: 1/8)
-    if (size != entries_.size()) {
-      entries_.assign(size, Entry{});
-      shift_ = 64 - __builtin_ctzll(size);
-      epoch_ = 0;
-    }
+  // Empties the table for a cavity with at most `entries` edge entries (3 per boundary face).
+  // The table in use is the smallest that keeps the load at most 1/4 (each edge is entered
+  // twice: 1/8 in edges), within the memory kept, so one huge cavity does not spread every later
+  // small one over a large table.
+  void begin(std::size_t entries) {
+    std::size_t used = kMinimumSize;
+    while (used < 4 * entries) used *= 2;
+    if (entries_.size() < used) entries_.resize(used);
+    used_ = used;
+    shift_ = 64 - __builtin_ctzll(used);
     if (++epoch_ == 0) {  // wrapped: entries of an old epoch could look current
       for (Entry& e : entries_) e.epoch = 0;
       epoch_ = 1;
@@ -40,7 +41,7 @@ class CavityEdges {
     std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> shift_);
     // Past other edges' entries (rare at this load): a predictable branch.
     while (entries_[i].epoch == epoch_ && entries_[i].key != key) {
-      i = (i + 1) & (entries_.size() - 1);
+      i = (i + 1) & (used_ - 1);
     }
     Entry& e = entries_[i];
     const bool seen = e.epoch == epoch_;
@@ -54,18 +55,23 @@ class CavityEdges {
 
   // The edges entered since begin().
   [[nodiscard]] std::size_t size() const { return distinct_; }
+  // Entries in use now, and kept allocated (for tests).
+  [[nodiscard]] std::size_t used_capacity() const { return used_; }
+  [[nodiscard]] std::size_t allocated_capacity() const { return entries_.size(); }
 
  private:
   static constexpr FaceRef kPaired = 0xFFFFFFFFu;
+  static constexpr std::size_t kMinimumSize = 256;
   struct Entry {
     std::uint64_t key = 0;
     std::uint32_t epoch = 0;
     FaceRef ref = 0;
   };
-  std::vector<Entry> entries_;
+  std::vector<Entry> entries_;  // the first used_ are the table
+  std::size_t used_ = kMinimumSize;
   std::uint32_t epoch_ = 0;
   std::size_t distinct_ = 0;
-  int shift_ = 64 - 8;
+  int shift_ = 64 - 8;  // log2(used_) top bits
 };
 
 }  // namespace dtlab::engine

@@ -10,7 +10,10 @@
 // that contains p, and p joined to its boundary is the perturbed Delaunay tetrahedralization
 // with p (docs/design.md, "Cavity insertion"). The same argument shows that p is never coplanar
 // with a boundary face: on the vertical flat over that face's plane, the lifted hyperplanes of
-// the two tetrahedra that share the face meet in the same 2-flat, so p is below both or neither.
+// the two tetrahedra that share the face meet in the same 2-flat, so p is below both or neither
+// (a face with the vertex at infinity: the same, on the plane through its edge and the interior
+// point O). Not flat, the new tetrahedron is positive: it fills part of the cavity, on the side of
+// the face where the cavity's tetrahedron lies.
 // So with the adaptive, filtered and exact kernels nothing is checked; with the fast kernel, which
 // can contradict itself, every new tetrahedron is (one orientation each, about 5% of a run): a
 // cavity that is no star around p is NotStar, and the caller inserts that point by flips instead.
@@ -21,21 +24,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "cavity_face.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "epoch_table.hpp"
 #include "mesh_geometry.hpp"
 #include "shared_mesh.hpp"
 
 namespace dtlab::engine {
-
-// A face of the cavity's boundary: face `face` of cavity tetrahedron `inside`, whose neighbour
-// across (`outside`) is not in conflict. The new tetrahedron on it is `inside` with the vertex at
-// `face` replaced by p.
-struct CavityFace {
-  TetId inside;
-  int face;
-  FaceRef outside;
-};
 
 template <class K, class Sync>
 class CavitySearch {
@@ -83,6 +78,9 @@ class CavitySearch {
   }
 
   [[nodiscard]] const std::vector<TetId>& cavity() const { return cavity_; }
+  // Hands the cavity to `other` (the replacement's list of old tetrahedra) by a swap of the
+  // two vectors: both keep their memory, nothing is copied.
+  void move_cavity_to(std::vector<TetId>& other) { cavity_.swap(other); }
   [[nodiscard]] const std::vector<CavityFace>& boundary() const { return boundary_; }
 
  private:

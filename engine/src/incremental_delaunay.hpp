@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -72,8 +73,7 @@ class IncrementalDelaunay {
         slots_(mesh_.tets, recycle_, nullptr),
         replacement_(mesh_, *sync_, slots_, !recycle_),
         locator_(mesh_, options, geometry_, walk_, recycle_, false, Sync::kLocks),
-        cavity_search_(mesh_, geometry_, *sync_,
-                       options.check_cavities || options.kernel == KernelKind::Fast),
+        cavity_search_(mesh_, geometry_, *sync_, verify_cavities(options)),
         cavity_(options.insertion == Insertion::Cavity && recycle_) {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
     mesh_.tets.keep_children(!walk_);
@@ -95,8 +95,7 @@ class IncrementalDelaunay {
         slots_(mesh_.tets, recycle_, reclaimer),
         replacement_(mesh_, *sync_, slots_, !recycle_),
         locator_(mesh_, options, geometry_, walk_, recycle_, true, Sync::kLocks),
-        cavity_search_(mesh_, geometry_, *sync_,
-                       options.check_cavities || options.kernel == KernelKind::Fast),
+        cavity_search_(mesh_, geometry_, *sync_, verify_cavities(options)),
         cavity_(options.insertion == Insertion::Cavity && recycle_) {}
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
@@ -185,13 +184,13 @@ class IncrementalDelaunay {
     }
 
     if (cavity_) {
-      const Outcome replaced = replace_cavity(t, p, o);
-      if (replaced != Outcome::Unlocated) {  // Unlocated here: the cavity failed, use flips
+      if (const std::optional<Outcome> replaced = replace_cavity(t, p, o)) {
         stats_.seconds.subdivision += std::chrono::duration<double>(Clock::now() - t1).count();
-        if (replaced == Outcome::GaveUp) return give_up();
+        if (*replaced == Outcome::GaveUp) return give_up();
         sync_->commit();
-        return replaced;
+        return *replaced;
       }
+      // No outcome: the cavity failed (an inexact kernel); p goes in by flips.
     }
     const Outcome split = subdivide(t, p, o);
     const auto t2 = Clock::now();
@@ -309,26 +308,32 @@ class IncrementalDelaunay {
   }
 
   // Bowyer-Watson insertion of p, located in t (locked): Inserted, Duplicate, GaveUp (a lock
-  // refused, nothing written), or Unlocated when the cavity is not a star around p (an inexact
-  // kernel): nothing written, the caller inserts p by flips, its locks still held.
-  Outcome replace_cavity(TetId t, VertexId p, const std::array<int, 4>& o) {
+  // refused, nothing written), or no outcome when the cavity is not a star around p (an inexact
+  // kernel): nothing written, the caller inserts p by flips, its locks still held. Each such
+  // attempt counts in stats.cavity.fallbacks (a point given up later and retried counts again).
+  std::optional<Outcome> replace_cavity(TetId t, VertexId p, const std::array<int, 4>& o) {
     if (std::count(o.begin(), o.end(), 0) == 3) return subdivide(t, p, o);  // on a vertex
     using Grown = typename CavitySearch<K, Sync>::Grown;
     const Grown grown = cavity_search_.grow(t, p);
     if (grown == Grown::GaveUp) return Outcome::GaveUp;
     if (grown == Grown::Done) {
       replacement_.begin({});
-      replacement_.old_tets() = cavity_search_.cavity();
-      const Replaced done = replacement_.replace_cavity(p, cavity_search_.boundary());
-      if (done == Replaced::GaveUp) return Outcome::GaveUp;
-      if (done == Replaced::Done) {
+      cavity_search_.move_cavity_to(replacement_.old_tets());
+      const std::size_t removed = replacement_.old_tets().size();
+      // Never GaveUp: the search holds every lock the replacement needs.
+      if (replacement_.replace_cavity(p, cavity_search_.boundary()) == Replaced::Done) {
         ++stats_.cavity.insertions;
-        stats_.cavity.tetrahedra_removed += cavity_search_.cavity().size();
+        stats_.cavity.tetrahedra_removed += removed;
         return Outcome::Inserted;
       }
     }
     ++stats_.cavity.fallbacks;
-    return Outcome::Unlocated;
+    return std::nullopt;
+  }
+
+  // The fast kernel can contradict itself: its cavities are checked (cavity_search.hpp).
+  static bool verify_cavities(const TriangulateOptions& options) {
+    return options.check_cavities || options.kernel == KernelKind::Fast;
   }
 
   Outcome finish_split(Replaced done) {

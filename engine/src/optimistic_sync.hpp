@@ -252,8 +252,9 @@ class OptimisticSync {
   void rollback() {
     if (mode_ == Mode::Burglary) {
       // Only ever called before the insertion's first write: nothing to undo. A victim burgled
-      // there (always so with cavity insertion, whose writes all come after its last lock) lost
-      // nothing: it tries the point again after the burglar's insertion.
+      // there (always so for a point inserted by a cavity, whose writes all come after its last
+      // lock; not for the fast kernel's fallbacks to flips) lost nothing: it tries the point
+      // again after the burglar's insertion.
       created_.clear();
       own_kills_.clear();
       release_all();

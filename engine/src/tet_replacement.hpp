@@ -10,12 +10,14 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cassert>
 #include <cstdint>
 #include <initializer_list>
 #include <utility>
 #include <vector>
 
 #include "cavity_edges.hpp"
+#include "cavity_face.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "shared_mesh.hpp"
 #include "slot_allocator.hpp"
@@ -331,16 +333,16 @@ class TetReplacement {
   // other new tetrahedron on that edge (the boundary of a star-shaped cavity is a sphere: every
   // edge on exactly two faces). Those are paired through a table of edges. Impossible, nothing
   // written, when an edge is not on exactly two boundary faces (an inexact kernel's cavity).
-  template <class Face>
-  Replaced replace_cavity(VertexId p, const std::vector<Face>& boundary) {
+  // Slots are reused in cavity mode (no DAG): scratch_parent_ is not read.
+  Replaced replace_cavity(VertexId p, const std::vector<CavityFace>& boundary) {
+    assert(!dag_);
     const std::size_t n = boundary.size();
     scratch_new_.resize(n);
-    scratch_parent_.assign(n, -1);
     matched_.resize(4 * n);
     edges_.begin(3 * n);
     bool third_face = false;
     for (std::size_t j = 0; j < n; ++j) {
-      const Face& b = boundary[j];
+      const CavityFace& b = boundary[j];
       Quad& q = scratch_new_[j];
       q = mesh_.tets[b.inside].vertex;
       q[static_cast<std::size_t>(b.face)] = p;
@@ -360,21 +362,27 @@ class TetReplacement {
     }
     // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them.
     if (third_face || 2 * edges_.size() != 3 * n) return Replaced::Impossible;
-    return commit_replacement();
+    // The search locked every tetrahedron written here, and nothing after this write can be
+    // refused: no undo log.
+    return commit_replacement(/*undoable=*/false);
   }
 
-  Replaced commit_replacement() {
-    // Every tetrahedron written below is locked first: the outside neighbours get new back
-    // references (the old ones are locked already), and the undo log sees each before its first
-    // write.
+  // undoable: a lock can still be refused after these writes (a split or flip, followed by the
+  // rest of the legalization). Then every tetrahedron written below is locked first (the outside
+  // neighbours get new back references; the old ones are locked already), and the undo log sees
+  // each before its first write. A cavity's replacement is not undoable: its search locked them
+  // all, and it ends the insertion.
+  Replaced commit_replacement(bool undoable = true) {
     if constexpr (Sync::kLocks) {
-      for (const FaceMatch& m : matched_) {
-        if (!m.is_new && !sync_.acquire(ref_tet(m.ref))) return Replaced::GaveUp;
+      if (undoable) {
+        for (const FaceMatch& m : matched_) {
+          if (!m.is_new && !sync_.acquire(ref_tet(m.ref))) return Replaced::GaveUp;
+        }
+        for (const FaceMatch& m : matched_) {
+          if (!m.is_new) sync_.before_write(ref_tet(m.ref));
+        }
+        for (const TetId o : scratch_old_) sync_.before_write(o);
       }
-      for (const FaceMatch& m : matched_) {
-        if (!m.is_new) sync_.before_write(ref_tet(m.ref));
-      }
-      for (const TetId o : scratch_old_) sync_.before_write(o);
     }
 
     scratch_created_.clear();
