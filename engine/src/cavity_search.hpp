@@ -89,7 +89,7 @@ class CavitySearch {
   void enter(TetId t) {
     cavity_.push_back(t);
     const Tet& tet = mesh_.tets[t];
-    for (const FaceRef r : tet.neighbor) __builtin_prefetch(&mesh_.tets[ref_tet(r)]);
+    for (const FaceRef r : tet.neighbor) mesh_.tets.prefetch(ref_tet(r));
   }
 
   const SharedMesh& mesh_;

@@ -149,6 +149,14 @@ class TetStore {
     return *std::launder(reinterpret_cast<std::atomic<std::uint32_t>*>(slot(t) + sizeof(Tet)));
   }
 
+  // Asks for slot t's cache lines ahead of use: its first and its last byte, since a slot of 36
+  // or 52 bytes often spans two lines (the lock word, read first by a lock method, in the second).
+  void prefetch(TetId t) const {
+    const char* s = slot(t);
+    __builtin_prefetch(s);
+    __builtin_prefetch(s + stride_ - 1);
+  }
+
   Tet& operator[](TetId t) { return *std::launder(reinterpret_cast<Tet*>(slot(t))); }
   const Tet& operator[](TetId t) const {
     return *std::launder(reinterpret_cast<const Tet*>(slot(t)));
