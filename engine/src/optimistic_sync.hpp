@@ -24,6 +24,7 @@
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "shared_mesh.hpp"
+#include "tet_id_list.hpp"
 
 namespace dtlab::engine {
 
@@ -226,17 +227,23 @@ class OptimisticSync {
     log_.push_back(s);
   }
 
-  void created(TetId t) {
+  // last_write: this replacement ends the insertion (a cavity's), so neither rollback() nor
+  // resume() can follow it and the lists they read need not hold t.
+  void created(TetId t, bool last_write = false) {
     // Owned before it is published: nobody can lock it before this thread lets go. Never logged.
     mesh_.tets.lock_word(t).store(mode_ == Mode::Burglary ? self_ : self_ | LockTable::kLogged,
                                   std::memory_order_relaxed);
     held_.push_back(t);
-    created_.push_back(t);
+    if (last_write) {
+      ended_ = true;
+    } else {
+      created_.push_back(t);
+    }
   }
 
   // Burglary: t, alive until now, dies by this thread's own write.
-  void killed(TetId t) {
-    if (mode_ == Mode::Burglary) own_kills_.push_back(t);
+  void killed(TetId t, bool last_write = false) {
+    if (mode_ == Mode::Burglary && !last_write) own_kills_.push_back(t);
   }
 
   void commit() {
@@ -244,12 +251,14 @@ class OptimisticSync {
     created_.clear();
     own_kills_.clear();
     release_all();
+    ended_ = false;
     end_phase();
   }
 
   // Restores every logged tetrahedron, then retires the new ones (dead, no children: a reader
   // that reaches one restarts its descent), then unlocks. New tetrahedra are not logged.
   void rollback() {
+    assert(!ended_);  // nothing after a last write can be refused
     if (mode_ == Mode::Burglary) {
       // Only ever called before the insertion's first write: nothing to undo. A victim burgled
       // there (always so for a point inserted by a cavity, whose writes all come after its last
@@ -292,6 +301,7 @@ class OptimisticSync {
   // the tetrahedra it created and checks them: all alive means the rest of its legalization is
   // still valid.
   Resume resume() {
+    assert(!ended_);
     if (mode_ != Mode::Burglary) return Resume::GiveUp;
     ++stats_.burgled;
     std::vector<TetId> mine;
@@ -414,7 +424,11 @@ class OptimisticSync {
   }
 
   void release_all() {
-    if (mode_ != Mode::Burglary) {
+    // A burglar takes only the locks of a thread it marked burgled while that thread waited, and
+    // such a thread gives its attempt up. An insertion that reached its last write (a cavity's)
+    // was never burgled, so every word it holds is its own: burglary releases those by plain
+    // stores too.
+    if (mode_ != Mode::Burglary || ended_) {
       // release: this thread's writes are visible to the next owner. Nobody else writes a word
       // this thread holds, so a plain store does (no locked instruction per tetrahedron).
       for (const TetId t : held_) mesh_.tets.lock_word(t).store(0, std::memory_order_release);
@@ -446,8 +460,9 @@ class OptimisticSync {
   ThreadStats& stats_;
   bool stress_;
   std::minstd_rand rng_;
-  std::vector<TetId> held_;
-  std::vector<TetId> created_;
+  TetIdList held_;
+  TetIdList created_;
+  bool ended_ = false;  // a last write happened in this insertion (checked in debug builds)
   std::vector<Saved> log_;
   std::vector<TetId> own_kills_;      // burglary: created tetrahedra this thread itself replaced
   std::vector<TetId> suspicious_;     // burglary: marks for the post-check

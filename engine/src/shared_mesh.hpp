@@ -103,10 +103,10 @@ struct NoSync {
   static constexpr bool kLocks = false;
   bool acquire(TetId /*t*/) { return true; }  // false: give the insertion up
   void before_write(TetId /*t*/) {}           // undo log entry before the first write to t
-  void created(TetId /*t*/) {}                // a new tetrahedron, owned from birth
-  void commit() {}                            // the insertion is complete: unlock
-  void rollback() {}                          // give up: undo everything, unlock
-  void killed(TetId /*t*/) {}                 // t dies by this thread's write
+  void created(TetId /*t*/, bool /*last_write*/ = false) {}  // a new tetrahedron, owned from birth
+  void commit() {}                                           // the insertion is complete: unlock
+  void rollback() {}                                         // give up: undo everything, unlock
+  void killed(TetId /*t*/, bool /*last_write*/ = false) {}   // t dies by this thread's write
   Resume resume() { return Resume::GiveUp; }  // a lock was refused during legalization
   void mark_suspicious(TetId /*t*/) {}        // burglary: for the post-check
 };

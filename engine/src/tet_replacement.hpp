@@ -393,7 +393,7 @@ class TetReplacement {
       if (dag_) {
         for (auto& c : mesh_.tets.children(id)) c.store(kNoTet, std::memory_order_relaxed);
       }
-      sync_.created(id);  // locked by this thread before anyone can reach it
+      sync_.created(id, !undoable);  // locked by this thread before anyone can reach it
       scratch_created_.push_back(id);
     }
     // The new tetrahedra's own references first, then the outside's references to them.
@@ -420,7 +420,7 @@ class TetReplacement {
       if (recycle_) {
         mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
         slots_.retire(scratch_old_[r]);
-        sync_.killed(scratch_old_[r]);
+        sync_.killed(scratch_old_[r], !undoable);
         continue;
       }
       int slot = 0;
@@ -431,7 +431,7 @@ class TetReplacement {
         }
       }
       mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
-      sync_.killed(scratch_old_[r]);
+      sync_.killed(scratch_old_[r], !undoable);
     }
     for (const TetId id : scratch_created_)
       mesh_.tets.set_alive(id, true, std::memory_order_release);
