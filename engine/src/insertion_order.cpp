@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-#include "dtlab/generators/random.hpp"
+#include "dtlab/common/random.hpp"
 #include "radix_sort.hpp"
 
 namespace dtlab::engine {
@@ -13,7 +13,7 @@ namespace dtlab::engine {
 std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
   std::vector<std::uint32_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  generators::detail::Random rng(seed);
+  common::Random rng(seed);
   for (std::size_t i = n; i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
   return order;
 }

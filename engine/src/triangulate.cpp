@@ -12,7 +12,6 @@
 #include <nlohmann/json.hpp>
 
 #include "dtlab/engine/point_set_info.hpp"
-#include "dtlab/generators/random.hpp"
 #include "dtlab/predicates/audit.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "incremental_delaunay.hpp"

@@ -7,12 +7,12 @@
 #include <map>
 #include <stdexcept>
 
-#include "dtlab/generators/random.hpp"
+#include "dtlab/common/random.hpp"
 
 namespace dtlab::generators {
 namespace {
 
-using detail::Random;
+using common::Random;
 using Points = std::vector<Point3>;
 
 Point3 uniform_point(Random& rng) {

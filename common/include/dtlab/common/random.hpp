@@ -1,12 +1,13 @@
 #pragma once
-// Platform-independent random numbers: std::mt19937_64's output sequence is fixed by the
-// standard, while std::uniform_*_distribution and std::shuffle are not, so dtlab converts the
-// raw 64-bit words itself.
+// Platform-independent random numbers, shared by the engine (its seeded insertion order) and the
+// generators: std::mt19937_64's output sequence is fixed by the standard, while
+// std::uniform_*_distribution and std::shuffle are not, so dtlab converts the raw 64-bit words
+// itself.
 #include <cmath>
 #include <cstdint>
 #include <random>
 
-namespace dtlab::generators::detail {
+namespace dtlab::common {
 
 class Random {
   __extension__ using Wide = unsigned __int128;  // GCC and Clang on 64-bit targets
@@ -46,4 +47,4 @@ class Random {
   bool has_spare_ = false;
 };
 
-}  // namespace dtlab::generators::detail
+}  // namespace dtlab::common
