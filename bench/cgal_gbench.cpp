@@ -1,4 +1,5 @@
-// dtlab (walk and DAG modes, optimistic-detect at 2 threads) and CGAL's Delaunay_triangulation_3
+// dtlab (walk and DAG modes, flips and cavity insertion, optimistic-detect at 2 threads) and
+// CGAL's Delaunay_triangulation_3
 // (sequential, parallel at 2 threads) as Google Benchmark cases on the same generated points:
 // wall time per triangulation, medians of 3 repetitions, points per second. Every engine runs in
 // this one process, so peak memory is not measured here: `dtlab experiment compare` (each run in
@@ -29,10 +30,12 @@ const std::vector<Point3>& points_of(const std::string& family, std::int64_t n) 
 }
 
 void run_dtlab(benchmark::State& state, const std::string& family, std::int64_t n,
-               dtlab::engine::Location location, dtlab::engine::Method method, int threads) {
+               dtlab::engine::Location location, dtlab::engine::Method method, int threads,
+               dtlab::engine::Insertion insertion = dtlab::engine::Insertion::Flips) {
   const auto& points = points_of(family, n);
   dtlab::engine::TriangulateOptions options;
   options.location = location;
+  options.insertion = insertion;
   options.method = method;
   options.threads = threads;
   if (threads > 1) options.distribution = dtlab::engine::Distribution::Blocks;
@@ -56,6 +59,16 @@ void dtlab_dag(benchmark::State& state, const char* family, std::int64_t n) {
 void dtlab_walk_optimistic_detect_2t(benchmark::State& state, const char* family, std::int64_t n) {
   run_dtlab(state, family, n, dtlab::engine::Location::Walk,
             dtlab::engine::Method::OptimisticDetect, 2);
+}
+
+void dtlab_walk_cavity(benchmark::State& state, const char* family, std::int64_t n) {
+  run_dtlab(state, family, n, dtlab::engine::Location::Walk, dtlab::engine::Method::Sequential, 1,
+            dtlab::engine::Insertion::Cavity);
+}
+void dtlab_walk_cavity_optimistic_detect_2t(benchmark::State& state, const char* family,
+                                            std::int64_t n) {
+  run_dtlab(state, family, n, dtlab::engine::Location::Walk,
+            dtlab::engine::Method::OptimisticDetect, 2, dtlab::engine::Insertion::Cavity);
 }
 
 void run_cgal(benchmark::State& state, const char* family, std::int64_t n, int threads) {
@@ -90,10 +103,12 @@ void cgal_parallel_2t(benchmark::State& state, const char* family, std::int64_t 
       ->Iterations(1)                        \
       ->Repetitions(3)                       \
       ->ReportAggregatesOnly(true)
-#define DTLAB_INPUT(name, family, n)                            \
-  DTLAB_CASE(dtlab_walk, name, family, n);                      \
-  DTLAB_CASE(cgal, name, family, n);                            \
-  DTLAB_CASE(dtlab_walk_optimistic_detect_2t, name, family, n); \
+#define DTLAB_INPUT(name, family, n)                                   \
+  DTLAB_CASE(dtlab_walk, name, family, n);                             \
+  DTLAB_CASE(dtlab_walk_cavity, name, family, n);                      \
+  DTLAB_CASE(cgal, name, family, n);                                   \
+  DTLAB_CASE(dtlab_walk_optimistic_detect_2t, name, family, n);        \
+  DTLAB_CASE(dtlab_walk_cavity_optimistic_detect_2t, name, family, n); \
   DTLAB_CASE(cgal_parallel_2t, name, family, n)
 
 DTLAB_INPUT(uniform_1000000, "uniform", 1000000);
