@@ -12,10 +12,14 @@
 #include <vector>
 
 #include "cavity_edges.hpp"
+#include "cavity_face.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "epoch_table.hpp"
+#include "shared_mesh.hpp"
+#include "slot_allocator.hpp"
+#include "tet_replacement.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -28,41 +32,38 @@ using engine::Location;
 
 TEST(CavityEdges, PairsTheTwoFacesOfEachEdge) {
   CavityEdges edges;
-  bool third = false;
-  edges.begin(3);
+  CavityEdges::Pass pass = edges.begin(3);
   // The first face on an edge gets itself back; the second gets the first, whichever order the
   // two vertex ids come in.
-  EXPECT_EQ(edges.pair(7, 3, 100, third), 100u);
-  EXPECT_EQ(edges.pair(5, 9, 101, third), 101u);
-  EXPECT_EQ(edges.pair(3, 7, 102, third), 100u);
-  EXPECT_EQ(edges.pair(9, 5, 103, third), 101u);
-  EXPECT_FALSE(third);
-  EXPECT_EQ(edges.size(), 2u);
+  EXPECT_EQ(pass.pair(7, 3, 100), 100u);
+  EXPECT_EQ(pass.pair(5, 9, 101), 101u);
+  EXPECT_EQ(pass.pair(3, 7, 102), 100u);
+  EXPECT_EQ(pass.pair(9, 5, 103), 101u);
+  EXPECT_FALSE(pass.third_face());
+  EXPECT_EQ(pass.size(), 2u);
   // A third face on a paired edge is flagged: the boundary is not a sphere.
-  EXPECT_EQ(edges.pair(7, 3, 104, third), 104u);
-  EXPECT_TRUE(third);
+  EXPECT_EQ(pass.pair(7, 3, 104), 104u);
+  EXPECT_TRUE(pass.third_face());
   // begin() empties the table.
-  edges.begin(3);
-  third = false;
-  EXPECT_EQ(edges.pair(3, 7, 105, third), 105u);
-  EXPECT_EQ(edges.size(), 1u);
-  EXPECT_FALSE(third);
+  CavityEdges::Pass next = edges.begin(3);
+  EXPECT_EQ(next.pair(3, 7, 105), 105u);
+  EXPECT_EQ(next.size(), 1u);
+  EXPECT_FALSE(next.third_face());
 }
 
 TEST(CavityEdges, GrowsForLargeCavitiesAndKeepsEveryPair) {
   CavityEdges edges;
   std::size_t largest = 0;
   for (const std::size_t n : {std::size_t{10}, std::size_t{5000}, std::size_t{10}}) {
-    edges.begin(2 * n);
-    bool third = false;
+    CavityEdges::Pass pass = edges.begin(2 * n);
     for (std::uint32_t e = 0; e < n; ++e) {
-      EXPECT_EQ(edges.pair(e, e + 1000000, 2 * e, third), 2 * e);
+      EXPECT_EQ(pass.pair(e, e + 1000000, 2 * e), 2 * e);
     }
     for (std::uint32_t e = 0; e < n; ++e) {
-      EXPECT_EQ(edges.pair(e + 1000000, e, 2 * e + 1, third), 2 * e) << n << " " << e;
+      EXPECT_EQ(pass.pair(e + 1000000, e, 2 * e + 1), 2 * e) << n << " " << e;
     }
-    EXPECT_FALSE(third);
-    EXPECT_EQ(edges.size(), n);
+    EXPECT_FALSE(pass.third_face());
+    EXPECT_EQ(pass.size(), n);
     // The table in use fits this cavity (load at most 1/4), whatever an earlier one needed; the
     // memory of the largest is kept.
     EXPECT_GE(edges.used_capacity(), 4 * 2 * n);
@@ -108,6 +109,90 @@ TEST(EpochTable, FindsWhatWasInsertedAcrossGrowthAndClears) {
   EXPECT_EQ(table.find(1), nullptr);
   table.insert(1, true);
   EXPECT_TRUE(*table.find(1));
+}
+
+// The replacement itself, on a sequential walk's store (aliveness kept in the record). A boundary
+// that does not close up (three of a tetrahedron's four faces: three of its edges lie on one face
+// each) is Impossible: no record changes, the slots it wrote into are dead again, and they come
+// back for the next allocation (not leaked). The whole boundary then replaces the tetrahedron by
+// four around the point, glued to each other and to the outside both ways.
+TEST(CavityReplacement, AnOpenBoundaryWritesNothingAndGivesItsSlotsBack) {
+  using Replacement = engine::TetReplacement<engine::NoSync>;
+  const std::vector<predicates::Point3> points{
+      {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.2, 0.2, 0.2}};
+  engine::SharedMesh mesh(points);
+  mesh.tets.keep_children(false);
+  mesh.tets.keep_lock_words(false);
+  engine::NoSync sync;
+  engine::SlotAllocator slots(mesh.tets, /*recycle=*/true, nullptr);
+  Replacement replacement(mesh, sync, slots, /*keep_dag=*/false);
+  // The first tetrahedron (positive: the unit simplex) and its four infinite neighbours.
+  const engine::Quad first{0, 1, 2, 3};
+  replacement.begin({});
+  replacement.push_new(first);
+  for (const auto& f : engine::kFaceVertex) {
+    replacement.push_new({first[static_cast<std::size_t>(f[0])],
+                          first[static_cast<std::size_t>(f[1])],
+                          first[static_cast<std::size_t>(f[2])], engine::kInfiniteVertex});
+  }
+  ASSERT_EQ(replacement.replace(), Replacement::Replaced::Done);
+  const engine::TetId inner = replacement.created()[0];
+  std::vector<engine::CavityFace> boundary;
+  for (int f = 0; f < 4; ++f) {
+    boundary.push_back({inner, f, mesh.tets[inner].neighbor[static_cast<std::size_t>(f)]});
+  }
+  // Every slot of the store's first run, as it is before the failed attempt.
+  constexpr engine::TetId kSlots = 16;
+  auto snapshot = [&] {
+    std::vector<std::pair<engine::Tet, bool>> records;
+    for (engine::TetId t = 0; t < kSlots; ++t) {
+      records.emplace_back(mesh.tets[t], mesh.tets.is_alive(t));
+    }
+    return records;
+  };
+  auto same = [](const std::vector<std::pair<engine::Tet, bool>>& a,
+                 const std::vector<std::pair<engine::Tet, bool>>& b) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].second != b[i].second) return false;
+      if (a[i].second &&
+          (a[i].first.vertex != b[i].first.vertex || a[i].first.neighbor != b[i].first.neighbor)) {
+        return false;
+      }
+    }
+    return true;
+  };
+  const auto before = snapshot();
+  slots.begin_insertion();
+  replacement.begin({inner});
+  const std::vector<engine::CavityFace> open(boundary.begin(), boundary.begin() + 3);
+  EXPECT_EQ(replacement.replace_cavity(4, open), Replacement::Replaced::Impossible);
+  EXPECT_TRUE(replacement.created().empty());
+  EXPECT_TRUE(same(before, snapshot()));
+  EXPECT_TRUE(mesh.tets.is_alive(inner));
+
+  // The first five tetrahedra took slots 0-4 of the store's first run; the failed attempt took
+  // 5-7 and gave them back, so the four new tetrahedra are 5-8 (a leak would give 8-11).
+  replacement.begin({inner});
+  ASSERT_EQ(replacement.replace_cavity(4, boundary), Replacement::Replaced::Done);
+  std::vector<engine::TetId> created = replacement.created();
+  std::sort(created.begin(), created.end());
+  EXPECT_EQ(created, (std::vector<engine::TetId>{5, 6, 7, 8}));
+  slots.end_insertion(false);
+  EXPECT_FALSE(mesh.tets.is_alive(inner));
+  for (engine::TetId t = 0; t < kSlots; ++t) {
+    if (!mesh.tets.is_alive(t)) continue;
+    const engine::Tet& tet = mesh.tets[t];
+    const bool is_new = std::find(created.begin(), created.end(), t) != created.end();
+    EXPECT_EQ(tet.index_of(4) >= 0, is_new) << t;
+    for (int f = 0; f < 4; ++f) {
+      const engine::FaceRef r = tet.neighbor[static_cast<std::size_t>(f)];
+      ASSERT_TRUE(mesh.tets.is_alive(engine::ref_tet(r))) << t;
+      EXPECT_EQ(
+          mesh.tets[engine::ref_tet(r)].neighbor[static_cast<std::size_t>(engine::ref_face(r))],
+          engine::face_ref(t, f))
+          << t;
+    }
+  }
 }
 
 TEST(CavityInsertion, NeedsTheWalkMode) {

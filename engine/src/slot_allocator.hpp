@@ -5,6 +5,7 @@
 // until then); on a shared mesh only after the epochs say no other thread's operation can reach
 // them (slot_reclaimer.hpp). Fresh slots come in runs of kSlotRun from the store: one atomic step
 // per run, and one thread's records share cache lines only with its own.
+#include <cassert>
 #include <cstddef>
 #include <vector>
 
@@ -62,6 +63,15 @@ class SlotAllocator {
     }
     if (reclaimer_ != nullptr) attempt_created_.push_back(id);
     return id;
+  }
+  // t, the last slot this attempt allocated, was never published (nothing references it, and
+  // it is dead): free again at once, also on a shared mesh.
+  void give_back(TetId t) {
+    if (reclaimer_ != nullptr) {
+      assert(!attempt_created_.empty() && attempt_created_.back() == t);
+      attempt_created_.pop_back();
+    }
+    free_slots_.push_back(t);
   }
   // t died in the current insertion (walk mode).
   void retire(TetId t) { retired_.push_back(t); }

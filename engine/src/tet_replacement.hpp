@@ -18,6 +18,7 @@
 
 #include "cavity_edges.hpp"
 #include "cavity_face.hpp"
+#include "conflict.hpp"  // Quad
 #include "dtlab/engine/tet_mesh.hpp"
 #include "shared_mesh.hpp"
 #include "slot_allocator.hpp"
@@ -333,56 +334,82 @@ class TetReplacement {
   // other new tetrahedron on that edge (the boundary of a star-shaped cavity is a sphere: every
   // edge on exactly two faces). Those are paired through a table of edges. Impossible, nothing
   // written, when an edge is not on exactly two boundary faces (an inexact kernel's cavity).
-  // Slots are reused in cavity mode (no DAG): scratch_parent_ is not read.
+  //
+  // The new records are written into their slots as the edges pair up, with no scratch copy:
+  // the slots are this thread's, unpublished (nothing references them, and a reused one's grace
+  // period is over), so writing them changes nothing anyone can see. Only then is the pairing
+  // checked; an impossible one gives the slots back. The outside's references to the new
+  // tetrahedra, the deaths and the births come after the check, as in commit_replacement.
   Replaced replace_cavity(VertexId p, const std::vector<CavityFace>& boundary) {
     assert(!dag_);
     const std::size_t n = boundary.size();
-    scratch_new_.resize(n);
-    matched_.resize(4 * n);
-    edges_.begin(3 * n);
-    bool third_face = false;
+    scratch_created_.resize(n);
+    for (std::size_t j = 0; j < n; ++j) scratch_created_[j] = slots_.allocate();
+    const TetId* ids = scratch_created_.data();
+    // Face ref 4 j + g of new tetrahedron j, as the mesh names it.
+    auto global = [ids](FaceRef local) { return face_ref(ids[ref_tet(local)], ref_face(local)); };
+    CavityEdges::Pass edges = edges_.begin(3 * n);
     for (std::size_t j = 0; j < n; ++j) {
       const CavityFace& b = boundary[j];
-      Quad& q = scratch_new_[j];
-      q = mesh_.tets[b.inside].vertex;
-      q[static_cast<std::size_t>(b.face)] = p;
-      matched_[4 * j + static_cast<std::size_t>(b.face)] = {b.outside, false, true};
+      Tet& fresh = mesh_.tets[ids[j]];
+      fresh.vertex = mesh_.tets[b.inside].vertex;
+      fresh.vertex[static_cast<std::size_t>(b.face)] = p;
+      fresh.neighbor[static_cast<std::size_t>(b.face)] = b.outside;
       for (int g = 0; g < 4; ++g) {
         if (g == b.face) continue;
-        // The edge of face g without p: q's vertices at the two positions other than b.face, g.
+        // The edge of face g without p: the vertices at the two positions other than b.face, g.
         const auto& [u, w] =
             kOtherTwo[static_cast<std::size_t>(b.face)][static_cast<std::size_t>(g)];
         const auto self = static_cast<FaceRef>(4 * j + static_cast<std::size_t>(g));
-        const FaceRef partner = edges_.pair(q[u], q[w], self, third_face);
+        const FaceRef partner = edges.pair(fresh.vertex[u], fresh.vertex[w], self);
         // Branch-free: partner == self while the edge's second face is still to come (that face
-        // writes both entries then).
-        matched_[self] = {partner, true, true};
-        matched_[partner] = {self, true, true};
+        // writes both references then).
+        fresh.neighbor[static_cast<std::size_t>(g)] = global(partner);
+        mesh_.tets[ids[ref_tet(partner)]].neighbor[static_cast<std::size_t>(ref_face(partner))] =
+            global(self);
       }
     }
     // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them.
-    if (third_face || 2 * edges_.size() != 3 * n) return Replaced::Impossible;
-    // The search locked every tetrahedron written here, and nothing after this write can be
-    // refused: no undo log.
-    return commit_replacement(/*undoable=*/false);
+    if (edges.third_face() || 2 * edges.size() != 3 * n) {
+      for (std::size_t j = n; j-- > 0;) {
+        mesh_.tets.set_alive(ids[j], false, std::memory_order_relaxed);  // a reused record
+        slots_.give_back(ids[j]);
+      }
+      scratch_created_.clear();
+      return Replaced::Impossible;
+    }
+    // The search locked every tetrahedron written from here on, and nothing after this write can
+    // be refused: no undo log, and the new and dead tetrahedra stay out of the lists that only a
+    // rollback reads.
+    for (std::size_t j = 0; j < n; ++j) sync_.created(ids[j], /*last_write=*/true);
+    // Publishing: the outside's references to the complete new records (release).
+    for (std::size_t j = 0; j < n; ++j) {
+      const CavityFace& b = boundary[j];
+      store_neighbor(mesh_.tets[ref_tet(b.outside)], ref_face(b.outside), face_ref(ids[j], b.face));
+    }
+    for (const TetId o : scratch_old_) {
+      mesh_.tets.set_alive(o, false, std::memory_order_release);
+      slots_.retire(o);
+      sync_.killed(o, /*last_write=*/true);
+    }
+    for (std::size_t j = 0; j < n; ++j)
+      mesh_.tets.set_alive(ids[j], true, std::memory_order_release);
+    return Replaced::Done;
   }
 
-  // undoable: a lock can still be refused after these writes (a split or flip, followed by the
-  // rest of the legalization). Then every tetrahedron written below is locked first (the outside
-  // neighbours get new back references; the old ones are locked already), and the undo log sees
-  // each before its first write. A cavity's replacement is not undoable: its search locked them
-  // all, and it ends the insertion.
-  Replaced commit_replacement(bool undoable = true) {
+  // A lock can still be refused after these writes (a split or flip is followed by the rest of
+  // the legalization): every tetrahedron written below is locked first (the outside neighbours
+  // get new back references; the old ones are locked already), and the undo log sees each before
+  // its first write.
+  Replaced commit_replacement() {
     if constexpr (Sync::kLocks) {
-      if (undoable) {
-        for (const FaceMatch& m : matched_) {
-          if (!m.is_new && !sync_.acquire(ref_tet(m.ref))) return Replaced::GaveUp;
-        }
-        for (const FaceMatch& m : matched_) {
-          if (!m.is_new) sync_.before_write(ref_tet(m.ref));
-        }
-        for (const TetId o : scratch_old_) sync_.before_write(o);
+      for (const FaceMatch& m : matched_) {
+        if (!m.is_new && !sync_.acquire(ref_tet(m.ref))) return Replaced::GaveUp;
       }
+      for (const FaceMatch& m : matched_) {
+        if (!m.is_new) sync_.before_write(ref_tet(m.ref));
+      }
+      for (const TetId o : scratch_old_) sync_.before_write(o);
     }
 
     scratch_created_.clear();
@@ -393,7 +420,7 @@ class TetReplacement {
       if (dag_) {
         for (auto& c : mesh_.tets.children(id)) c.store(kNoTet, std::memory_order_relaxed);
       }
-      sync_.created(id, !undoable);  // locked by this thread before anyone can reach it
+      sync_.created(id);  // locked by this thread before anyone can reach it
       scratch_created_.push_back(id);
     }
     // The new tetrahedra's own references first, then the outside's references to them.
@@ -420,7 +447,7 @@ class TetReplacement {
       if (recycle_) {
         mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
         slots_.retire(scratch_old_[r]);
-        sync_.killed(scratch_old_[r], !undoable);
+        sync_.killed(scratch_old_[r]);
         continue;
       }
       int slot = 0;
@@ -431,7 +458,7 @@ class TetReplacement {
         }
       }
       mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
-      sync_.killed(scratch_old_[r], !undoable);
+      sync_.killed(scratch_old_[r]);
     }
     for (const TetId id : scratch_created_)
       mesh_.tets.set_alive(id, true, std::memory_order_release);
