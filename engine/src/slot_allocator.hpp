@@ -7,10 +7,10 @@
 // per run, and one thread's records share cache lines only with its own.
 #include <cassert>
 #include <cstddef>
-#include <vector>
 
 #include "dtlab/engine/tet_mesh.hpp"
 #include "slot_reclaimer.hpp"
+#include "tet_id_list.hpp"
 
 namespace dtlab::engine {
 
@@ -51,8 +51,7 @@ class SlotAllocator {
   TetId allocate() {
     TetId id = kNoTet;
     if (!free_slots_.empty()) {
-      id = free_slots_.back();
-      free_slots_.pop_back();
+      id = free_slots_.pop_back();
     } else {
       if (run_next_ == run_end_) {
         std::size_t count = 0;
@@ -69,7 +68,7 @@ class SlotAllocator {
   void give_back(TetId t) {
     if (reclaimer_ != nullptr) {
       assert(!attempt_created_.empty() && attempt_created_.back() == t);
-      attempt_created_.pop_back();
+      (void)attempt_created_.pop_back();
     }
     free_slots_.push_back(t);
   }
@@ -93,10 +92,10 @@ class SlotAllocator {
   TetStore& store_;
   bool recycle_;
   SlotReclaimer* reclaimer_;
-  std::vector<TetId> free_slots_;
-  std::vector<TetId> retired_;          // killed by the current insertion
-  std::vector<TetId> attempt_created_;  // taken by the current attempt (reclaimer only)
-  TetId run_next_ = 0;                  // this thread's run of fresh slots: [run_next_, run_end_)
+  TetIdList free_slots_;
+  TetIdList retired_;          // killed by the current insertion
+  TetIdList attempt_created_;  // taken by the current attempt (reclaimer only)
+  TetId run_next_ = 0;         // this thread's run of fresh slots: [run_next_, run_end_)
   TetId run_end_ = 0;
 };
 

@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
-#include <vector>
 
 #include "dtlab/engine/tet_mesh.hpp"
+#include "tet_id_list.hpp"
 
 namespace dtlab::engine {
 
@@ -65,7 +65,7 @@ class SlotReclaimer {
   }
   void retire(TetId t) { limbo_.push_back({t, domain_.epoch.load(std::memory_order_acquire)}); }
   // Moves the slots that no operation can reach any more to `free`.
-  void collect(std::vector<TetId>& free) {
+  void collect(TetIdList& free) {
     if ((++collections_ & 63) == 0) domain_.try_advance();
     const std::uint64_t now = domain_.epoch.load(std::memory_order_acquire);
     while (!limbo_.empty() && limbo_.front().epoch + 2 <= now) {
