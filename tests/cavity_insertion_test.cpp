@@ -19,6 +19,7 @@
 #include "epoch_table.hpp"
 #include "shared_mesh.hpp"
 #include "slot_allocator.hpp"
+#include "slot_reclaimer.hpp"
 #include "tet_replacement.hpp"
 
 namespace dtlab::test {
@@ -111,21 +112,27 @@ TEST(EpochTable, FindsWhatWasInsertedAcrossGrowthAndClears) {
   EXPECT_TRUE(*table.find(1));
 }
 
-// The replacement itself, on a sequential walk's store (aliveness kept in the record). A boundary
-// that does not close up (three of a tetrahedron's four faces: three of its edges lie on one face
-// each) is Impossible: no record changes, the slots it wrote into are dead again, and they come
-// back for the next allocation (not leaked). The whole boundary then replaces the tetrahedron by
-// four around the point, glued to each other and to the outside both ways.
-TEST(CavityReplacement, AnOpenBoundaryWritesNothingAndGivesItsSlotsBack) {
+// The replacement itself. A boundary that does not close up (three of a tetrahedron's four faces:
+// three of its edges lie on one face each) is Impossible: no live record changes (nor any dead
+// slot other than the three it wrote into), those three are dead again, and they come back for
+// the next allocation (not leaked). The whole boundary then replaces the tetrahedron by four
+// around the point, glued to each other and to the outside both ways. `shared`: a parallel
+// walk's store (alive flags beside the records, lock words) with an epoch reclaimer, where the
+// slots given back also leave the attempt's list; otherwise a sequential walk's (aliveness in
+// the record itself), no reclaimer.
+void expect_open_boundary_changes_no_live_record(bool shared) {
   using Replacement = engine::TetReplacement<engine::NoSync>;
   const std::vector<predicates::Point3> points{
       {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.2, 0.2, 0.2}};
   engine::SharedMesh mesh(points);
   mesh.tets.keep_children(false);
-  mesh.tets.keep_lock_words(false);
+  mesh.tets.keep_lock_words(shared);
   engine::NoSync sync;
-  engine::SlotAllocator slots(mesh.tets, /*recycle=*/true, nullptr);
+  engine::EpochDomain domain(1);
+  engine::SlotReclaimer reclaimer(domain, 0);
+  engine::SlotAllocator slots(mesh.tets, /*recycle=*/true, shared ? &reclaimer : nullptr);
   Replacement replacement(mesh, sync, slots, /*keep_dag=*/false);
+  slots.begin_insertion();
   // The first tetrahedron (positive: the unit simplex) and its four infinite neighbours.
   const engine::Quad first{0, 1, 2, 3};
   replacement.begin({});
@@ -141,8 +148,10 @@ TEST(CavityReplacement, AnOpenBoundaryWritesNothingAndGivesItsSlotsBack) {
   for (int f = 0; f < 4; ++f) {
     boundary.push_back({inner, f, mesh.tets[inner].neighbor[static_cast<std::size_t>(f)]});
   }
-  // Every slot of the store's first run, as it is before the failed attempt.
+  // Every slot of the store's first run, as it is before the failed attempt. The first five
+  // tetrahedra took slots 0-4 of the store's first run; the failed attempt takes 5-7.
   constexpr engine::TetId kSlots = 16;
+  const std::vector<engine::TetId> attempt{5, 6, 7};
   auto snapshot = [&] {
     std::vector<std::pair<engine::Tet, bool>> records;
     for (engine::TetId t = 0; t < kSlots; ++t) {
@@ -150,28 +159,22 @@ TEST(CavityReplacement, AnOpenBoundaryWritesNothingAndGivesItsSlotsBack) {
     }
     return records;
   };
-  auto same = [](const std::vector<std::pair<engine::Tet, bool>>& a,
-                 const std::vector<std::pair<engine::Tet, bool>>& b) {
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (a[i].second != b[i].second) return false;
-      if (a[i].second &&
-          (a[i].first.vertex != b[i].first.vertex || a[i].first.neighbor != b[i].first.neighbor)) {
-        return false;
-      }
-    }
-    return true;
-  };
   const auto before = snapshot();
-  slots.begin_insertion();
   replacement.begin({inner});
   const std::vector<engine::CavityFace> open(boundary.begin(), boundary.begin() + 3);
   EXPECT_EQ(replacement.replace_cavity(4, open), Replacement::Replaced::Impossible);
   EXPECT_TRUE(replacement.created().empty());
-  EXPECT_TRUE(same(before, snapshot()));
+  const auto after = snapshot();
+  for (engine::TetId t = 0; t < kSlots; ++t) {
+    EXPECT_EQ(after[t].second, before[t].second) << t;  // aliveness
+    if (std::find(attempt.begin(), attempt.end(), t) != attempt.end()) continue;
+    EXPECT_EQ(after[t].first.vertex, before[t].first.vertex) << t;
+    EXPECT_EQ(after[t].first.neighbor, before[t].first.neighbor) << t;
+  }
   EXPECT_TRUE(mesh.tets.is_alive(inner));
 
-  // The first five tetrahedra took slots 0-4 of the store's first run; the failed attempt took
-  // 5-7 and gave them back, so the four new tetrahedra are 5-8 (a leak would give 8-11).
+  // The slots given back are taken again first, so the four new tetrahedra are 5-8 (a leak
+  // would give 8-11).
   replacement.begin({inner});
   ASSERT_EQ(replacement.replace_cavity(4, boundary), Replacement::Replaced::Done);
   std::vector<engine::TetId> created = replacement.created();
@@ -187,11 +190,22 @@ TEST(CavityReplacement, AnOpenBoundaryWritesNothingAndGivesItsSlotsBack) {
     for (int f = 0; f < 4; ++f) {
       const engine::FaceRef r = tet.neighbor[static_cast<std::size_t>(f)];
       ASSERT_TRUE(mesh.tets.is_alive(engine::ref_tet(r))) << t;
-      EXPECT_EQ(
-          mesh.tets[engine::ref_tet(r)].neighbor[static_cast<std::size_t>(engine::ref_face(r))],
-          engine::face_ref(t, f))
+      const engine::Tet& across = mesh.tets[engine::ref_tet(r)];
+      EXPECT_EQ(across.neighbor[static_cast<std::size_t>(engine::ref_face(r))],
+                engine::face_ref(t, f))
           << t;
     }
+  }
+}
+
+TEST(CavityReplacement, AnOpenBoundaryChangesNoLiveRecordAndGivesItsSlotsBack) {
+  {
+    SCOPED_TRACE("sequential store");
+    expect_open_boundary_changes_no_live_record(false);
+  }
+  {
+    SCOPED_TRACE("shared store with a reclaimer");
+    expect_open_boundary_changes_no_live_record(true);
   }
 }
 

@@ -309,7 +309,7 @@ class IncrementalDelaunay {
 
   // Bowyer-Watson insertion of p, located in t (locked): Inserted, Duplicate, GaveUp (a lock
   // refused, nothing written), or no outcome when the cavity is not a star around p (an inexact
-  // kernel): nothing written, the caller inserts p by flips, its locks still held. Each such
+  // kernel): no live record changed, the caller inserts p by flips, its locks still held. Each such
   // attempt counts in stats.cavity.fallbacks (a point given up later and retried counts again).
   std::optional<Outcome> replace_cavity(TetId t, VertexId p, const std::array<int, 4>& o) {
     if (std::count(o.begin(), o.end(), 0) == 3) return subdivide(t, p, o);  // on a vertex

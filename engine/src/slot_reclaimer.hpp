@@ -1,13 +1,19 @@
 #pragma once
 // Epoch-based reclamation of tetrahedron slots for the parallel walk mode (docs/design.md, "Walk
 // mode"). A thread's operation (one insertion attempt, or one location of the batch method's
-// locating threads) is bracketed by enter() and leave(). A slot that dies is retired with the
-// global epoch of that moment and reused only once the epoch is two ahead: the epoch moves from
-// e to e + 1 only when every thread inside an operation entered it at e, so two steps past the
-// retirement every operation that could have reached the slot has ended. New operations cannot
-// reach it: they start from a live tetrahedron and follow neighbour references, and a slot is
-// retired only after it was unlinked from every live tetrahedron.
+// locating threads) is bracketed by enter() and leave(). A slot dies inside the operation of the
+// thread that kills it, which entered at epoch a; it is reused only once the global epoch is
+// a + 3. The epoch moves from e to e + 1 only when every thread inside an operation entered it at
+// e, so while the killer is inside the epoch is at most a + 1, and any other thread that may still
+// hold a reference read before the unlink became visible to it entered at a + 1 at the latest: it
+// must have left before the epoch can reach a + 3. (a + 2 is not enough: a thread may enter at
+// a + 1, even after the killer left, without synchronizing with the killer's unlinking store, and
+// the epoch may reach a + 2 while it is inside.) Operations that enter at a + 2 or later read an
+// epoch whose advance saw the killer leave, so they see the unlink: they start from a live
+// tetrahedron and follow neighbour references, and a slot is retired only after it was unlinked
+// from every live tetrahedron.
 #include <atomic>
+#include <cassert>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -56,19 +62,24 @@ class SlotReclaimer {
     inside_ = true;
     // seq_cst: the announcement is visible to every advancing thread before this thread reads
     // the mesh (a store-load order that acquire and release alone do not give).
-    mine_.store(domain_.epoch.load(std::memory_order_seq_cst), std::memory_order_seq_cst);
+    entered_ = domain_.epoch.load(std::memory_order_seq_cst);
+    mine_.store(entered_, std::memory_order_seq_cst);
   }
   void leave() {
     if (!inside_) return;
     inside_ = false;
     mine_.store(EpochDomain::kQuiescent, std::memory_order_release);
   }
-  void retire(TetId t) { limbo_.push_back({t, domain_.epoch.load(std::memory_order_acquire)}); }
+  // t died in this thread's current operation: tagged with the epoch the operation entered at.
+  void retire(TetId t) {
+    assert(inside_);
+    limbo_.push_back({t, entered_});
+  }
   // Moves the slots that no operation can reach any more to `free`.
   void collect(TetIdList& free) {
     if ((++collections_ & 63) == 0) domain_.try_advance();
     const std::uint64_t now = domain_.epoch.load(std::memory_order_acquire);
-    while (!limbo_.empty() && limbo_.front().epoch + 2 <= now) {
+    while (!limbo_.empty() && limbo_.front().epoch + 3 <= now) {
       free.push_back(limbo_.front().tet);
       limbo_.pop_front();
     }
@@ -83,6 +94,7 @@ class SlotReclaimer {
   std::atomic<std::uint64_t>& mine_;
   std::deque<Retired> limbo_;
   std::uint64_t collections_ = 0;
+  std::uint64_t entered_ = 0;  // the epoch the current operation announced
   bool inside_ = false;
 };
 

@@ -333,7 +333,8 @@ class TetReplacement {
   // each of its three other faces holds p and one edge of the boundary face, shared with the one
   // other new tetrahedron on that edge (the boundary of a star-shaped cavity is a sphere: every
   // edge on exactly two faces). Those are paired through a table of edges. Impossible, nothing
-  // written, when an edge is not on exactly two boundary faces (an inexact kernel's cavity).
+  // published (no live record changes), when an edge is not on exactly two boundary faces (an
+  // inexact kernel's cavity).
   //
   // The new records are written into their slots as the edges pair up, with no scratch copy:
   // the slots are this thread's, unpublished (nothing references them, and a reused one's grace
@@ -372,7 +373,8 @@ class TetReplacement {
     // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them.
     if (edges.third_face() || 2 * edges.size() != 3 * n) {
       for (std::size_t j = n; j-- > 0;) {
-        mesh_.tets.set_alive(ids[j], false, std::memory_order_relaxed);  // a reused record
+        mesh_.tets.set_alive(
+            ids[j], false, std::memory_order_relaxed);  // record mode: the write made it look alive
         slots_.give_back(ids[j]);
       }
       scratch_created_.clear();
