@@ -373,8 +373,8 @@ class TetReplacement {
     // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them.
     if (edges.third_face() || 2 * edges.size() != 3 * n) {
       for (std::size_t j = n; j-- > 0;) {
-        mesh_.tets.set_alive(
-            ids[j], false, std::memory_order_relaxed);  // record mode: the write made it look alive
+        // Dead again: where aliveness is kept in the record, writing the record made it look alive.
+        mesh_.tets.set_alive(ids[j], false, std::memory_order_relaxed);
         slots_.give_back(ids[j]);
       }
       scratch_created_.clear();
