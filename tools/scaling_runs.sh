@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Thread scaling on a machine with enough cores (the lent 16-core machine; docs/performance.md):
+#  1. bench/cgal_compare at each thread count: the sequential walk, every lock method in walk mode
+#     and CGAL (sequential and parallel at the same thread count), interleaved, medians of 3;
+#  2. burglary with cavity insertion, then star splaying (--repair), per thread count and seed:
+#     the run's seconds, the repair's seconds and what the exact scan found.
+# Usage: tools/scaling_runs.sh OUTDIR [INPUT] [THREADS] [INSERTION] [PARTS]
+#   INPUT     generator spec or point file (default uniform:1000000)
+#   THREADS   comma-separated thread counts (default 2,4,8,16)
+#   INSERTION what cgal_compare runs: cavity, flips or both (default cavity)
+#   PARTS     compare, repair or both (default both). Each repair run also runs the post-check's
+#             exact validation twice (not timed in the run; about 20 s each at 1M points here).
+# DTLAB_BIN names the build directory (default build/release).
+set -euo pipefail
+out=${1:?usage: tools/scaling_runs.sh OUTDIR [INPUT] [THREADS] [INSERTION] [PARTS]}
+input=${2:-uniform:1000000}
+IFS=, read -r -a thread_counts <<<"${3:-2,4,8,16}"
+insertion=${4:-cavity}
+parts=${5:-both}
+bin=${DTLAB_BIN:-build/release}
+mkdir -p "$out"
+tag=$(echo "$input" | tr ':/' '__')
+
+{
+  echo "date: $(date -u +%Y-%m-%dT%H:%MZ)"
+  echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "cpus available: $(nproc)"
+  grep -m1 'model name' /proc/cpuinfo || true
+  grep MemTotal /proc/meminfo || true
+} | tee "$out/machine_$tag.txt"
+
+methods=pessimistic,optimistic-detect,optimistic-prevent,burglary,batch
+if [[ $parts != repair ]]; then
+for t in "${thread_counts[@]}"; do
+  echo "== cgal_compare $input --threads $t --insertion $insertion"
+  "$bin/bench/cgal_compare" "$input" --repeat 3 --threads "$t" --methods "$methods" --no-dag \
+    --insertion "$insertion"
+done 2>&1 | tee "$out/compare_$tag.txt"
+fi
+[[ $parts == compare ]] && exit 0
+
+# One JSON line per run: what the repair cost against the run it repaired.
+repairs="$out/repair_$tag.jsonl"
+: >"$repairs"
+for t in "${thread_counts[@]}"; do
+  for seed in 1 2 3; do
+    stats=$(mktemp)
+    "$bin/cli/dtlab" triangulate "$input" --location walk --insertion cavity --method burglary \
+      --threads "$t" --repair --seed "$seed" --stats "$stats" >/dev/null
+    python3 - "$stats" "$t" "$seed" >>"$repairs" <<'EOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+splay = s.get("splay", {})
+check = s.get("post_check", {})
+print(json.dumps({
+    "threads": int(sys.argv[2]), "seed": int(sys.argv[3]),
+    "seconds_total": s["seconds"]["total"],
+    "seconds_repair": check.get("seconds_repair"),
+    "seconds_scan": splay.get("seconds_scan"),
+    "non_delaunay_faces_found": splay.get("non_delaunay_faces"),
+    "stars": splay.get("stars"),
+    "non_delaunay_faces_after": check.get("non_delaunay_faces_after"),
+    "reflex_boundary_edges_after": check.get("reflex_boundary_edges_after"),
+    "mesh_consistent_after": check.get("mesh_consistent_after"),
+}))
+EOF
+    rm -f "$stats"
+  done
+done
+cat "$repairs"
