@@ -1,11 +1,12 @@
 // dtlab and CGAL's Delaunay_triangulation_3 on the same points, in one run: each engine runs in a
 // child process of its own (fork), so that each has its own peak memory, in interleaved rounds;
 // the table gives medians. Usage:
-//   cgal_compare INPUT [--seed S] [--repeat R] [--threads T] [--methods LIST] [--no-dag]
+//   cgal_compare INPUT [--seed S] [--repeat R] [--threads T[,T...]] [--methods LIST] [--no-dag]
 //                [--insertion flips|cavity|both]
 // INPUT is a generator spec (uniform:1000000) or a point file. With --threads T > 1 the parallel
 // methods in LIST (default optimistic-detect) run in walk mode at T threads, and CGAL's parallel
-// mode (TBB) at T threads when this build has it. The walk mode's engines run with each insertion
+// mode (TBB) at T threads when this build has it; T may be a list (2,4,8,16), which runs the
+// sequential engines once for all the counts. The walk mode's engines run with each insertion
 // asked for (default both: the flips, and the cavities as "dtlab walk cavity").
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -107,7 +108,7 @@ Sample run_cgal(const std::vector<Point3>& points, int threads) {
 }  // namespace
 
 constexpr const char* kUsage =
-    "usage: cgal_compare INPUT [--seed S] [--repeat R] [--threads T] [--methods LIST] "
+    "usage: cgal_compare INPUT [--seed S] [--repeat R] [--threads T[,T...]] [--methods LIST] "
     "[--no-dag] [--insertion flips|cavity|both]\n";
 
 int compare(int argc, char** argv) {
@@ -122,7 +123,7 @@ int compare(int argc, char** argv) {
   const std::string input = argv[1];
   std::uint64_t seed = 1;
   int repeat = 3;
-  int threads = 1;
+  std::vector<int> thread_counts;
   bool dag = true;
   std::string methods = "optimistic-detect";
   std::string insertion = "both";
@@ -134,7 +135,9 @@ int compare(int argc, char** argv) {
     } else if (arg == "--repeat" && has_value) {
       repeat = std::stoi(argv[++i]);
     } else if (arg == "--threads" && has_value) {
-      threads = std::stoi(argv[++i]);
+      std::stringstream list(argv[++i]);
+      std::string count;
+      while (std::getline(list, count, ',')) thread_counts.push_back(std::stoi(count));
     } else if (arg == "--methods" && has_value) {
       methods = argv[++i];
     } else if (arg == "--no-dag") {
@@ -180,7 +183,8 @@ int compare(int argc, char** argv) {
         [&](auto& p) { return run_dtlab(p, Location::Dag, Method::Sequential, 1, seed); });
   }
   add("CGAL, sequential", [](auto& p) { return run_cgal(p, 1); });
-  if (threads > 1) {
+  for (const int threads : thread_counts) {
+    if (threads < 2) continue;
     std::stringstream list(methods);
     std::string name;
     while (std::getline(list, name, ',')) {
@@ -198,14 +202,15 @@ int compare(int argc, char** argv) {
         return 2;
       }
       for (const auto& [how, prefix] : walks) {
-        add(prefix + name + " " + std::to_string(threads) + "t", [&, method, how = how](auto& p) {
-          return run_dtlab(p, Location::Walk, method, threads, seed, how);
-        });
+        add(prefix + name + " " + std::to_string(threads) + "t",
+            [&, method, threads, how = how](auto& p) {
+              return run_dtlab(p, Location::Walk, method, threads, seed, how);
+            });
       }
     }
     if (dtlab::experiments::cgal_parallel_available()) {
       add("CGAL, parallel (TBB) " + std::to_string(threads) + "t",
-          [&](auto& p) { return run_cgal(p, threads); });
+          [threads](auto& p) { return run_cgal(p, threads); });
     }
   }
 

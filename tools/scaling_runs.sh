@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Thread scaling on a machine with enough cores (the lent 16-core machine; docs/performance.md):
-#  1. bench/cgal_compare at each thread count: the sequential walk, every lock method in walk mode
+#  1. bench/cgal_compare over the thread counts: the sequential walk, every lock method in walk mode
 #     and CGAL (sequential and parallel at the same thread count), interleaved, medians of 3;
 #  2. burglary with cavity insertion, then star splaying (--repair), per thread count and seed:
 #     the run's seconds, the repair's seconds and what the exact scan found.
@@ -10,7 +10,8 @@
 #   INSERTION what cgal_compare runs: cavity, flips or both (default cavity)
 #   PARTS     compare, repair or both (default both). Each repair run also runs the post-check's
 #             exact validation twice (not timed in the run; about 20 s each at 1M points here).
-# DTLAB_BIN names the build directory (default build/release).
+# DTLAB_BIN names the build directory (default build/release); DTLAB_METHODS the lock methods
+# (default all five; burglary's runs include its post-check, untimed but long at 1M points).
 set -euo pipefail
 out=${1:?usage: tools/scaling_runs.sh OUTDIR [INPUT] [THREADS] [INSERTION] [PARTS]}
 input=${2:-uniform:1000000}
@@ -30,12 +31,11 @@ tag=$(echo "$input" | tr ':/' '__')
 } | tee "$out/machine_$tag.txt"
 
 methods=pessimistic,optimistic-detect,optimistic-prevent,burglary,batch
+methods=${DTLAB_METHODS:-$methods}
 if [[ $parts != repair ]]; then
-for t in "${thread_counts[@]}"; do
-  echo "== cgal_compare $input --threads $t --insertion $insertion"
-  "$bin/bench/cgal_compare" "$input" --repeat 3 --threads "$t" --methods "$methods" --no-dag \
-    --insertion "$insertion"
-done 2>&1 | tee "$out/compare_$tag.txt"
+  echo "== cgal_compare $input --threads ${3:-2,4,8,16} --methods $methods --insertion $insertion"
+  "$bin/bench/cgal_compare" "$input" --repeat 3 --threads "${3:-2,4,8,16}" --methods "$methods" \
+    --no-dag --insertion "$insertion" 2>&1 | tee "$out/compare_$tag.txt"
 fi
 [[ $parts == compare ]] && exit 0
 
