@@ -11,7 +11,8 @@
 #   PARTS     compare, repair or both (default both). Each repair run also runs the post-check's
 #             exact validation twice (not timed in the run; about 20 s each at 1M points here).
 # DTLAB_BIN names the build directory (default build/release); DTLAB_METHODS the lock methods
-# (default all five; burglary's runs include its post-check, untimed but long at 1M points).
+# (default all five; burglary's runs include its post-check, untimed but long at 1M points);
+# DTLAB_REPAIR_SEEDS the repair runs' seeds (default "1 2 3").
 set -euo pipefail
 out=${1:?usage: tools/scaling_runs.sh OUTDIR [INPUT] [THREADS] [INSERTION] [PARTS]}
 input=${2:-uniform:1000000}
@@ -43,7 +44,7 @@ fi
 repairs="$out/repair_$tag.jsonl"
 : >"$repairs"
 for t in "${thread_counts[@]}"; do
-  for seed in 1 2 3; do
+  for seed in ${DTLAB_REPAIR_SEEDS:-1 2 3}; do
     stats=$(mktemp)
     "$bin/cli/dtlab" triangulate "$input" --location walk --insertion cavity --method burglary \
       --threads "$t" --repair --seed "$seed" --stats "$stats" >/dev/null

@@ -1,6 +1,7 @@
 #include "splay_repair.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/repair.hpp"
 #include "dtlab/predicates/kernels.hpp"
+#include "insertion_order.hpp"
 #include "radix_sort.hpp"
 #include "star_splaying.hpp"
 #include "walked_mesh_stars.hpp"
@@ -282,29 +284,69 @@ struct LiveTetrahedra {
   std::vector<TetId> lowest_tetrahedron;
 };
 
-// The scan's order groups the tetrahedra by blocks of 2^6 consecutive vertex ids.
-constexpr unsigned kVertexBlockBits = 6;
+// The scan's blocks: the cells of a 2^k x 2^k x 2^k grid over the points' bounding box, numbered
+// along the Hilbert curve (consecutive blocks are face-adjacent cells): k is the largest (at most
+// 7) with 8^k cells for at least 4 points each, so a cell holds 4 to 32 points on uniform data
+// (30 at 1M points; cells of 4 measured the same). A tetrahedron belongs to the cell of its lowest
+// vertex.
+struct ScanCells {
+  std::vector<std::uint32_t> of_point;
+  std::size_t count = 1;
+};
+
+ScanCells scan_cells(const std::vector<Point3>& points, int parts) {
+  ScanCells cells;
+  cells.of_point.assign(points.size(), 0);
+  if (points.empty()) return cells;
+  unsigned bits = 1;
+  while (bits < 7 && (std::size_t{1} << (3 * (bits + 1))) <= points.size() / 4) ++bits;
+  cells.count = std::size_t{1} << (3 * bits);
+  Point3 lo = points[0];
+  Point3 hi = points[0];
+  for (const Point3& p : points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const double side = static_cast<double>(std::uint32_t{1} << bits);
+  auto scale = [side](double extent) { return extent > 0 ? side / extent : 0.0; };
+  const std::array<double, 3> per_unit = {scale(hi.x - lo.x), scale(hi.y - lo.y),
+                                          scale(hi.z - lo.z)};
+  const double last = side - 1;
+  auto cell_of = [last](double value, double low, double unit) {
+    const double at = (value - low) * unit;  // NaN where an extent overflowed: cell 0
+    return at > 0 ? static_cast<std::uint32_t>(std::min(at, last)) : std::uint32_t{0};
+  };
+  in_parallel_ranges(points.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Point3& p = points[i];
+      cells.of_point[i] = static_cast<std::uint32_t>(
+          hilbert_key(cell_of(p.x, lo.x, per_unit[0]), cell_of(p.y, lo.y, per_unit[1]),
+                      cell_of(p.z, lo.z, per_unit[2]), bits));
+    }
+  });
+  return cells;
+}
 
 // One counting sort over the store (DAG nodes included, about 50 slots per point in DAG mode), on
-// the run's threads: each thread counts the live tetrahedra of its range of slots by the block of
-// their lowest finite vertex, then places them; the order is (block, slot) whatever the thread
-// count. The tetrahedra with one lowest vertex are much of that vertex's star, each other's
-// neighbours, and a block's (about 430 at 64 vertices) fit in cache, so the scan finds most
-// neighbours' records there; after a sequential walk the points are also stored in insertion
-// (space-filling) order, so that near ids are near points. (In slot order, slots reused by later
-// insertions scatter the reads.) Blocks of vertices rather than vertices keep each thread's
-// counts in cache (64 KB at 1M points). docs/experiments.md has the three orders measured.
+// the run's threads: each thread counts the live tetrahedra of its range of slots by their block,
+// then places them; the order is (block, slot) whatever the thread count. A block's tetrahedra
+// (about 200 at 30 points a cell) are each other's neighbours and the next blocks' ones, so the
+// scan finds most neighbours' records and points in cache. Vertex ids say nothing of position
+// after a parallel run (they are the input's order), and slot order scatters the reads where
+// later insertions reused slots. Cells of several points keep each thread's counts in cache
+// (128 KB at 1M points). docs/experiments.md has the orders measured.
 // The first pass also lowers each vertex's lowest live tetrahedron, the threads together with
 // relaxed compare-and-swaps (a thread's own ids only grow, so one rarely retries).
 LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
   const std::size_t slots = mesh.tets.size();
-  const std::size_t blocks = (mesh.points.size() >> kVertexBlockBits) + 1;
+  const ScanCells cells = scan_cells(mesh.points, parts);
+  const std::size_t blocks = cells.count;
   LiveTetrahedra live;
   live.lowest_tetrahedron.assign(mesh.points.size(), kNoTet);
-  auto block_of = [](const Tet& t) {
+  auto block_of = [&cells](const Tet& t) {
     VertexId low = kInfiniteVertex;  // the largest id: some vertex is finite
     for (const VertexId v : t.vertex) low = std::min(low, v);
-    return static_cast<std::size_t>(low >> kVertexBlockBits);
+    return static_cast<std::size_t>(cells.of_point[low]);
   };
   std::vector<std::vector<std::uint32_t>> place(static_cast<std::size_t>(std::max(parts, 1)));
   in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
