@@ -25,7 +25,7 @@ tag=$(echo "$input" | tr ':/' '__')
 
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%MZ)"
-  echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "tree's commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown) (the binaries' own: DTLAB_BUILT_AT=${DTLAB_BUILT_AT:-not given})"
   echo "cpus available: $(nproc)"
   grep -m1 'model name' /proc/cpuinfo || true
   grep MemTotal /proc/meminfo || true
