@@ -346,17 +346,27 @@ LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
   auto block_of = [&cells](const Tet& t) {
     VertexId low = kInfiniteVertex;  // the largest id: some vertex is finite
     for (const VertexId v : t.vertex) low = std::min(low, v);
-    return static_cast<std::size_t>(cells.of_point[low]);
+    return cells.of_point[low];
   };
+  // Each slot's block, from the first pass, so that the second reads 4 bytes a slot instead of
+  // the store's 32 and the cells (the listing went from 0.17-0.18 s to 0.14-0.15 s at 1M points,
+  // 2 threads; 28 MB more while it runs). Left uninitialized: the first pass writes every entry.
+  constexpr std::uint32_t kDeadSlot = ~std::uint32_t{0};
+  const std::unique_ptr<std::uint32_t[]> block_at(new std::uint32_t[slots]);
   std::vector<std::vector<std::uint32_t>> place(static_cast<std::size_t>(std::max(parts, 1)));
   in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     std::vector<std::uint32_t>& count = place[part];
     count.assign(blocks, 0);
     for (std::size_t i = begin; i < end; ++i) {
       const auto t = static_cast<TetId>(i);
-      if (!mesh.tets.is_alive(t, std::memory_order_acquire)) continue;
+      if (!mesh.tets.is_alive(t, std::memory_order_acquire)) {
+        block_at[i] = kDeadSlot;
+        continue;
+      }
       const Tet& tet = mesh.tets[t];
-      ++count[block_of(tet)];
+      const std::uint32_t block = block_of(tet);
+      block_at[i] = block;
+      ++count[block];
       for (const VertexId v : tet.vertex) {
         if (v == kInfiniteVertex) continue;
         std::atomic_ref<TetId> lowest(live.lowest_tetrahedron[v]);
@@ -380,9 +390,7 @@ LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
   in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     std::vector<std::uint32_t>& at = place[part];
     for (std::size_t i = begin; i < end; ++i) {
-      const auto t = static_cast<TetId>(i);
-      if (mesh.tets.is_alive(t, std::memory_order_acquire))
-        live.ordered[at[block_of(mesh.tets[t])]++] = t;
+      if (block_at[i] != kDeadSlot) live.ordered[at[block_at[i]]++] = static_cast<TetId>(i);
     }
   });
   return live;
