@@ -7,7 +7,8 @@
 
 namespace dtlab::engine {
 
-// Inserts `order` (all input ids; the four of `first` already form the first tetrahedron when
+// Inserts `order` (all input ids, or empty for the identity, as in walk mode, whose points are
+// stored in BRIO and Hilbert order; the four of `first` already form the first tetrahedron when
 // skip_first) into a mesh built from `points` with options.method on options.threads threads.
 // Returns the finite tetrahedra below `input_count`, fills stats.
 template <class K>

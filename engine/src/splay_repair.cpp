@@ -331,9 +331,10 @@ ScanCells scan_cells(const std::vector<Point3>& points, int parts) {
 // the run's threads: each thread counts the live tetrahedra of its range of slots by their block,
 // then places them; the order is (block, slot) whatever the thread count. A block's tetrahedra
 // (about 200 at 30 points a cell) are each other's neighbours and the next blocks' ones, so the
-// scan finds most neighbours' records and points in cache. Vertex ids say nothing of position
-// after a parallel run (they are the input's order), and slot order scatters the reads where
-// later insertions reused slots. Cells of several points keep each thread's counts in cache
+// scan finds most neighbours' records and points in cache. Vertex ids say little of position
+// in DAG mode (they are the input's order; the walk mode stores the points in BRIO and Hilbert
+// order, whose rounds interleave), and slot order scatters the reads where later insertions
+// reused slots. Cells of several points keep each thread's counts in cache
 // (128 KB at 1M points). docs/experiments.md has the orders measured.
 // The first pass also lowers each vertex's lowest live tetrahedron, the threads together with
 // relaxed compare-and-swaps (a thread's own ids only grow, so one rarely retries).
@@ -441,7 +442,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
     // the misses overlap instead of queueing one behind the other. So are the points: a
     // tetrahedron's vertices lie far apart in the point array (different BRIO rounds after a
-    // sequential walk, the input's order after a parallel run).
+    // walk, the input's order in DAG mode).
     constexpr std::size_t kRecordsAhead = 16;
     constexpr std::size_t kNeighboursAhead = 8;
     constexpr std::size_t kApexAhead = 4;

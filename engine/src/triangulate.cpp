@@ -64,7 +64,7 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   IncrementalDelaunay<K> dt(points, options, stats);
   dt.start(first[0], first[1], first[2], first[3]);
   if (skip_first) stats.inserted += 4;
-  // An empty order is the identity (the sequential walk stores the points in insertion order).
+  // An empty order is the identity (the walk mode stores the points in insertion order).
   const std::size_t count = order.empty() ? input_count : order.size();
   Progress progress(options.progress, count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -322,12 +322,12 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
                              "; at least 4 points not in one plane are needed");
   }
   std::array<std::uint32_t, 4> simplex = *search.simplex;
-  // The sequential walk inserts in BRIO and Hilbert order (the parallel methods give each thread
-  // its own, parallel_methods.cpp) and renumbers the vertices in that order: the points are stored
-  // in the order they are inserted, so that the points of neighbouring tetrahedra lie close in
-  // memory.
-  std::vector<std::uint32_t> input_index;  // engine vertex id -> input index (sequential walk)
-  if (options.location == Location::Walk && options.method == Method::Sequential) {
+  // The walk mode inserts in BRIO and Hilbert order (each parallel thread its share of it, in
+  // that order: parallel_methods.cpp) and renumbers the vertices in that order: the points are
+  // stored in the order they are inserted, so that the points of neighbouring tetrahedra lie
+  // close in memory.
+  std::vector<std::uint32_t> input_index;  // engine vertex id -> input index (walk mode)
+  if (options.location == Location::Walk) {
     brio_hilbert_order(points, order);
     input_index = std::move(order);
     // The first tetrahedron's engine ids, by one pass over the map rather than through its
