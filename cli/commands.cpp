@@ -147,6 +147,8 @@ int run_triangulate(const TriangulateArgs& args) {
         method.c_str(), static_cast<unsigned long long>(args.options.seed));
     std::printf("  time: location %.3f s, subdivision %.3f s, legalization %.3f s, other %.3f s\n",
                 s.seconds.location, s.seconds.subdivision, s.seconds.legalization, s.seconds.other);
+    std::printf("  wall: before the first insertion %.3f s, after the last %.3f s\n",
+                s.seconds.ordering, s.seconds.output);
     std::printf(
         "  flips: S23 %llu, S32 %llu, S22 %llu, S44 %llu; DAG nodes %llu; peak RSS %.1f MiB\n",
         static_cast<unsigned long long>(s.flips.s23), static_cast<unsigned long long>(s.flips.s32),

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "dtlab/engine/triangulate.hpp"
@@ -100,6 +101,86 @@ TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
         EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
         EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
       }
+    }
+  }
+}
+
+// Threads that take slots from a new block at the same time map it once: one maps, the others
+// wait for it (before, each mapped and faulted in its own copy and all but one unmapped theirs),
+// and the run over a block's middle slot maps the next block ahead. Every slot handed out lies
+// in an installed block, and each thread's runs are its own.
+TEST(ParallelMethods, ConcurrentThreadsMapEachStoreBlockOnce) {
+  engine::TetStore store;
+  store.keep_children(false);
+  store.keep_lock_words(true);  // a parallel walk's blocks: every page touched when mapped
+  constexpr int kThreads = 6;
+  constexpr std::size_t kRunsEach = 4 * engine::TetStore::kBlockSize / 64;
+  std::vector<std::vector<TetId>> firsts(kThreads);
+  std::atomic<int> ready{0};
+  std::vector<std::thread> pool;
+  for (int i = 0; i < kThreads; ++i) {
+    pool.emplace_back([&, i] {
+      ready.fetch_add(1);
+      while (ready.load() < kThreads) std::this_thread::yield();
+      for (std::size_t r = 0; r < kRunsEach; ++r) {
+        std::size_t count = 0;
+        const TetId first = store.allocate_run(64, count);
+        EXPECT_EQ(count, 64u);
+        EXPECT_TRUE(store.has_block(first) && store.has_block(first + 63));
+        store.lock_word(first + 63).store(static_cast<std::uint32_t>(i + 1));
+        firsts[static_cast<std::size_t>(i)].push_back(first);
+      }
+    });
+  }
+  for (auto& t : pool) t.join();
+  const std::size_t slots = store.size();
+  ASSERT_EQ(slots, kThreads * kRunsEach * 64);
+  const std::size_t blocks = slots / engine::TetStore::kBlockSize;
+  // The blocks the slots fill, and the one mapped ahead of the last (its middle was handed out).
+  EXPECT_EQ(store.blocks_mapped(), blocks + 1);
+  for (int i = 0; i < kThreads; ++i) {
+    for (const TetId first : firsts[static_cast<std::size_t>(i)]) {
+      EXPECT_EQ(store.lock_word(first + 63).load(), static_cast<std::uint32_t>(i + 1));
+    }
+  }
+}
+
+// The steps over whole arrays before the first insertion and after the last (the BRIO order, the
+// points' renumbering and scaling, collecting the tetrahedra a few store blocks at a time, naming
+// them in input order) run on the method's threads: with several store blocks (65,536 slots
+// each), groups of blocks that do not divide evenly among 2 threads, duplicates to rename and the
+// auxiliary tetrahedron's vertices to leave out, the mesh is the sequential run's; the two
+// wall-clock parts are measured and are part of the total.
+TEST(ParallelMethods, WholeArrayStepsOnThreadsGiveTheSequentialMesh) {
+  struct Case {
+    std::string family;
+    std::size_t points;
+    engine::Bounding bounding;
+  };
+  for (const auto& [family, size, bounding] :
+       {Case{"uniform", 30000, engine::Bounding::Infinite},
+        Case{"duplicates", 50000, engine::Bounding::AuxTet}}) {
+    const auto points = generators::generate(family, size, 5).points;
+    engine::TriangulateOptions options;
+    options.location = engine::Location::Walk;
+    options.insertion = engine::Insertion::Cavity;
+    options.bounding = bounding;
+    const auto sequential = engine::triangulate(points, options);
+    options.method = Method::OptimisticDetect;
+    options.threads = 2;
+    const auto parallel = engine::triangulate(points, options);
+    // At least 3 blocks: two groups of blocks, the last one short.
+    ASSERT_GT(parallel.stats.store_slots, 2 * 65536u) << family;
+    if (family == "duplicates") {
+      EXPECT_GT(parallel.stats.duplicates, 0u);
+    }
+    EXPECT_EQ(engine::canonical_tetrahedra(parallel.tetrahedra),
+              engine::canonical_tetrahedra(sequential.tetrahedra))
+        << family;
+    for (const auto* s : {&sequential.stats, &parallel.stats}) {
+      EXPECT_GT(s->seconds.ordering, 0.0) << family;
+      EXPECT_GT(s->seconds.output, 0.0) << family;
+      EXPECT_LT(s->seconds.ordering + s->seconds.output, s->seconds.total) << family;
     }
   }
 }

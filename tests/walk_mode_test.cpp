@@ -106,6 +106,23 @@ TEST(InsertionOrder, BrioRoundsAreTheRandomOrdersHalvesSortedAlongTheCurve) {
   EXPECT_EQ(again, brio);
 }
 
+// The threads that share the keys and the rounds' sorts change nothing: on rounds large enough to
+// be split (100,000 points: the last rounds have 50,000 and 25,000), with equal points among
+// them, the order is the one-thread order.
+TEST(InsertionOrder, TheOrderDoesNotDependOnTheThreadCount) {
+  for (const std::string family : {"uniform", "duplicates", "grid"}) {
+    const auto points = generators::generate(family, 100000, 3).points;
+    const auto random = engine::random_order(points.size(), 11);
+    auto one = random;
+    engine::brio_hilbert_order(points, one, 1);
+    for (const int threads : {2, 3, 8}) {
+      auto several = random;
+      engine::brio_hilbert_order(points, several, threads);
+      EXPECT_EQ(several, one) << family << " " << threads;
+    }
+  }
+}
+
 // Every family, every exact kernel: the walk mode gives the DAG mode's tetrahedra, never needs
 // its fallback, and keeps no DAG: the store holds about the live tetrahedra, not the history.
 TEST(WalkMode, EveryFamilyEveryExactKernelGivesTheDagModesMesh) {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "dtlab/common/random.hpp"
+#include "parallel_ranges.hpp"
 #include "radix_sort.hpp"
 
 namespace dtlab::engine {
@@ -74,44 +75,61 @@ std::uint32_t cell(double c, double lo, double extent) {
 }  // namespace
 
 void brio_hilbert_order(const std::vector<predicates::Point3>& points,
-                        std::vector<std::uint32_t>& ids) {
+                        std::vector<std::uint32_t>& ids, int threads) {
   if (ids.empty()) return;
   // ids is a random order: every point read misses the cache unless it is asked for ahead.
   auto prefetch = [&](std::size_t i) {
     if (i < ids.size()) __builtin_prefetch(&points[ids[i]]);
   };
   constexpr std::size_t kAhead = 16;
-  predicates::Point3 lo = points[ids[0]];
-  predicates::Point3 hi = lo;
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    prefetch(i + kAhead);
-    const predicates::Point3& p = points[ids[i]];
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  // The bounding box, each thread over its range of ids.
+  const std::size_t parts = static_cast<std::size_t>(std::max(threads, 1));
+  std::vector<std::pair<predicates::Point3, predicates::Point3>> boxes(
+      parts, {points[ids[0]], points[ids[0]]});
+  in_parallel_ranges(ids.size(), threads,
+                     [&](std::size_t begin, std::size_t end, std::size_t part) {
+                       auto [lo, hi] = boxes[part];
+                       for (std::size_t i = begin; i < end; ++i) {
+                         prefetch(i + kAhead);
+                         const predicates::Point3& p = points[ids[i]];
+                         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+                         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+                       }
+                       boxes[part] = {lo, hi};
+                     });
+  predicates::Point3 lo = boxes[0].first;  // not a structured binding: the lambda below uses it
+  predicates::Point3 hi = boxes[0].second;
+  for (const auto& [part_lo, part_hi] : boxes) {
+    lo = {std::min(lo.x, part_lo.x), std::min(lo.y, part_lo.y), std::min(lo.z, part_lo.z)};
+    hi = {std::max(hi.x, part_hi.x), std::max(hi.y, part_hi.y), std::max(hi.z, part_hi.z)};
   }
   // One scale for the three axes keeps the cells cubes (a flat input stays a flat curve). The
   // halving keeps the extent finite for coordinates near DBL_MAX.
   const double extent =
       2 * std::max({hi.x / 2 - lo.x / 2, hi.y / 2 - lo.y / 2, hi.z / 2 - lo.z / 2});
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    prefetch(i + kAhead);
-    const predicates::Point3& p = points[ids[i]];
-    keyed[i] = {hilbert_key(cell(p.x, lo.x, extent), cell(p.y, lo.y, extent),
-                            cell(p.z, lo.z, extent), kBits),
-                ids[i]};
-  }
+  std::vector<KeyedId> keyed(ids.size());
+  in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      prefetch(i + kAhead);
+      const predicates::Point3& p = points[ids[i]];
+      keyed[i] = {hilbert_key(cell(p.x, lo.x, extent), cell(p.y, lo.y, extent),
+                              cell(p.z, lo.z, extent), kBits),
+                  ids[i]};
+    }
+  });
   // Rounds from the end: [n/2, n), [n/4, n/2), ... and a first round [0, end) of at most
   // kFirstRound points. Equal keys keep the random order (ties are broken by position: the sort
-  // is stable).
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch(keyed.size());
+  // is stable, on any number of threads).
+  std::vector<KeyedId> scratch(keyed.size());
   std::size_t end = keyed.size();
   while (end > 0) {
     const std::size_t begin = end <= kFirstRound ? 0 : end / 2;
-    stable_sort_by_key(keyed.data() + begin, scratch.data() + begin, end - begin);
+    stable_sort_by_key(keyed.data() + begin, scratch.data() + begin, end - begin, threads);
     end = begin;
   }
-  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = keyed[i].second;
+  in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) ids[i] = keyed[i].second;
+  });
 }
 
 }  // namespace dtlab::engine

@@ -20,9 +20,10 @@ std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, uns
 
 // Reorders `ids` (a random order) into BRIO rounds, each sorted along the Hilbert curve of the
 // points' bounding box: the last round is the second half of `ids`, the one before it the
-// preceding quarter, and so on down to a first round of at most kFirstRound points.
+// preceding quarter, and so on down to a first round of at most kFirstRound points. `threads`
+// share the keys and the sorts; the order is the same for any number of them.
 void brio_hilbert_order(const std::vector<predicates::Point3>& points,
-                        std::vector<std::uint32_t>& ids);
+                        std::vector<std::uint32_t>& ids, int threads = 1);
 
 inline constexpr std::size_t kFirstRound = 256;
 

@@ -205,8 +205,10 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
         report.non_delaunay_faces + (hull_counts ? report.reflex_boundary_edges : 0);
     return check.non_delaunay_after;
   };
+  const auto output_start = Clock::now();
   std::vector<Tetrahedron> tets =
-      mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+      mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates, options.threads);
+  stats.seconds.output += std::chrono::duration<double>(Clock::now() - output_start).count();
   count(tets);
   check.non_delaunay_faces = check.non_delaunay_faces_after;
   check.reflex_boundary_edges = check.reflex_boundary_edges_after;
@@ -220,7 +222,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
     // Star splaying from the marks and every non-Delaunay face: always ends Delaunay.
     splay_shared_mesh(mesh, marks, options.kernel != KernelKind::Fast, options.threads,
                       stats.splay);
-    tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+    tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates, options.threads);
     count(tets);
     check.seconds_repair = stats.splay.seconds;
     return tets;
@@ -239,12 +241,12 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   }
   check.repair_flips =
       dt.relegalize(options.location == Location::Walk ? live_marks : marks, false);
-  tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+  tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates, options.threads);
   check.non_delaunay_after_marked = count(tets);
   check.non_delaunay_after_flips = check.non_delaunay_after_marked;
   if (check.non_delaunay_after_flips > 0) {
     check.sweep_flips = dt.relegalize({}, true);
-    tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates);
+    tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates, options.threads);
     check.non_delaunay_after_flips = count(tets);
   }
   check.mesh_consistent_after_flips = check.mesh_consistent_after;
@@ -564,7 +566,11 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
   }
   if (options.repair == Repair::Splay)
     splay_shared_mesh(mesh, {}, options.kernel != KernelKind::Fast, options.threads, stats.splay);
-  return mesh.take_finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates);
+  const auto output_start = Clock::now();
+  std::vector<Tetrahedron> result =
+      mesh.take_finite_tetrahedra(static_cast<VertexId>(input_count), all_duplicates, threads);
+  stats.seconds.output += std::chrono::duration<double>(Clock::now() - output_start).count();
+  return result;
 }
 
 #define DTLAB_INSTANTIATE(K)                                                      \

@@ -4,6 +4,7 @@
 // for the store, whose records follow the locking rules of docs/design.md.
 #include <algorithm>
 #include <atomic>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -23,25 +24,31 @@ struct SharedMesh {
   Point3 origin{0, 0, 0};            // ...or this point, strictly inside them, when
   bool origin_is_point = false;      // origin_is_point
 
-  // Live finite tetrahedra whose vertices are all below `vertex_limit` (so not auxiliary). Each
-  // set of duplicate points is named by its lowest input index, whichever of them was inserted,
-  // so that the output does not depend on the insertion order.
+  // Live finite tetrahedra whose vertices are all below `vertex_limit` (so not auxiliary), in
+  // slot order. Each set of duplicate points is named by its lowest input index, whichever of
+  // them was inserted, so that the output does not depend on the insertion order.
   std::vector<Tetrahedron> finite_tetrahedra(
-      VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates) const {
-    return collect(vertex_limit, duplicates, false);
+      VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates,
+      int threads = 1) const {
+    return collect(vertex_limit, duplicates, false, threads);
   }
   // The same, releasing the store's blocks as they are read: the output does not coexist with
   // the whole store (at 1M uniform points it is 108 bytes per point). The store is unusable
   // afterwards; the last thing a run does.
   std::vector<Tetrahedron> take_finite_tetrahedra(
-      VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates) {
-    return collect(vertex_limit, duplicates, true);
+      VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates,
+      int threads = 1) {
+    return collect(vertex_limit, duplicates, true, threads);
   }
 
  private:
+  // The store's blocks are counted, then copied, by `threads` threads: each takes its share of
+  // the blocks, and a block's tetrahedra go after those of every lower block. The copy goes a
+  // group of `threads` blocks at a time: the output grows (and is paged in) by one group while
+  // the group's blocks are let go, so the two never coexist whole.
   std::vector<Tetrahedron> collect(VertexId vertex_limit,
                                    const std::vector<std::pair<VertexId, VertexId>>& duplicates,
-                                   bool release) const {
+                                   bool release, int threads) const {
     std::vector<VertexId> representative;
     if (!duplicates.empty()) {
       representative.resize(points.size());
@@ -59,22 +66,55 @@ struct SharedMesh {
              t.vertex[2] < vertex_limit && t.vertex[3] < vertex_limit;
     };
     const std::size_t n = tets.size();
-    std::vector<Tetrahedron> out;
-    if (release) {  // exactly the size needed: no growth while blocks are let go
-      std::size_t count = 0;
-      for (std::size_t i = 0; i < n; ++i) count += kept(static_cast<TetId>(i)) ? 1 : 0;
-      out.reserve(count);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      const Tet& t = tets[static_cast<TetId>(i)];
-      if (kept(static_cast<TetId>(i))) {
-        out.push_back(t.vertex);
-        if (!representative.empty()) {
-          for (auto& v : out.back()) v = representative[v];
+    const std::size_t blocks = (n + TetStore::kBlockSize - 1) / TetStore::kBlockSize;
+    const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
+                                                      std::max<std::size_t>(blocks, 1));
+    auto slots_of = [&](std::size_t block) {
+      return std::pair{block * TetStore::kBlockSize,
+                       std::min(n, (block + 1) * TetStore::kBlockSize)};
+    };
+    // Runs work(block) for blocks [begin, end), `parts` threads each over a contiguous share.
+    auto over_blocks = [&](std::size_t begin, std::size_t end, auto work) {
+      const std::size_t count = end - begin;
+      const std::size_t used = std::min(parts, count);
+      auto share = [&](std::size_t part) {
+        for (std::size_t b = begin + count * part / used; b < begin + count * (part + 1) / used;
+             ++b) {
+          work(b);
         }
-      }
-      const bool block_ends = (i + 1) % TetStore::kBlockSize == 0 || i + 1 == n;
-      if (release && block_ends) tets.release_block_of(static_cast<TetId>(i));
+      };
+      std::vector<std::thread> helpers;
+      for (std::size_t part = 0; part + 1 < used; ++part) helpers.emplace_back(share, part);
+      if (used > 0) share(used - 1);
+      for (std::thread& h : helpers) h.join();
+    };
+    // first[b]: where block b's first kept tetrahedron goes.
+    std::vector<std::size_t> first(blocks + 1, 0);
+    over_blocks(0, blocks, [&](std::size_t block) {
+      const auto [begin, end] = slots_of(block);
+      std::size_t count = 0;
+      for (std::size_t i = begin; i < end; ++i) count += kept(static_cast<TetId>(i)) ? 1 : 0;
+      first[block + 1] = count;
+    });
+    for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+    std::vector<Tetrahedron> out;
+    out.reserve(first[blocks]);  // exactly the size needed: no growth while blocks are let go
+    for (std::size_t group = 0; group < blocks; group += parts) {
+      const std::size_t group_end = std::min(blocks, group + parts);
+      out.resize(first[group_end]);
+      over_blocks(group, group_end, [&](std::size_t block) {
+        const auto [begin, end] = slots_of(block);
+        std::size_t at = first[block];
+        for (std::size_t i = begin; i < end; ++i) {
+          if (!kept(static_cast<TetId>(i))) continue;
+          Tetrahedron& t = out[at++];
+          t = tets[static_cast<TetId>(i)].vertex;
+          if (!representative.empty()) {
+            for (auto& v : t) v = representative[v];
+          }
+        }
+        if (release && begin < end) tets.release_block_of(static_cast<TetId>(begin));
+      });
     }
     return out;
   }

@@ -9,12 +9,12 @@
 #include <memory>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/repair.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "insertion_order.hpp"
+#include "parallel_ranges.hpp"
 #include "radix_sort.hpp"
 #include "star_splaying.hpp"
 #include "walked_mesh_stars.hpp"
@@ -160,25 +160,6 @@ std::array<VertexId, 4> pool_of(const std::vector<Point3>& points,
   const SimplexSearch s = find_simplex(points, vertices);
   if (!s.simplex) throw std::invalid_argument("star splaying: the points do not span 3D");
   return *s.simplex;
-}
-
-// Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges, one thread each
-// (the caller's thread takes the last); with parts <= 1, or n below 4096, it runs inline as
-// part 0 alone.
-template <class Work>
-void in_parallel_ranges(std::size_t n, int parts, Work work) {
-  const auto count = static_cast<std::size_t>(std::max(parts, 1));
-  if (count == 1 || n < 4096) {
-    work(std::size_t{0}, n, std::size_t{0});
-    return;
-  }
-  std::vector<std::thread> helpers;
-  helpers.reserve(count - 1);
-  for (std::size_t part = 0; part + 1 < count; ++part) {
-    helpers.emplace_back(work, n * part / count, n * (part + 1) / count, part);
-  }
-  work(n * (count - 1) / count, n, count - 1);
-  for (std::thread& h : helpers) h.join();
 }
 
 // The shared mesh as MeshStars: every live tetrahedron at each vertex, from an incidence list

@@ -17,6 +17,7 @@
 #include "incremental_delaunay.hpp"
 #include "insertion_order.hpp"
 #include "parallel_methods.hpp"
+#include "parallel_ranges.hpp"
 #include "splay_repair.hpp"
 
 namespace dtlab::engine {
@@ -92,7 +93,10 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   stats.walk_fallbacks = dt.walk_fallbacks();
   if (options.repair == Repair::Splay)
     splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, 1, stats.splay);
-  return dt.take_finite_tetrahedra(static_cast<VertexId>(input_count));
+  const auto output_start = Clock::now();
+  std::vector<Tetrahedron> result = dt.take_finite_tetrahedra(static_cast<VertexId>(input_count));
+  stats.seconds.output += std::chrono::duration<double>(Clock::now() - output_start).count();
+  return result;
 }
 
 #define DTLAB_INSTANTIATE(K)                                                      \
@@ -175,25 +179,32 @@ void name_duplicates_by_lowest_index(const std::vector<Point3>& input,
   }
 }
 
-void scale_points(std::vector<Point3>& points, int exponent) {
-  for (Point3& p : points) {
-    p = {std::ldexp(p.x, exponent), std::ldexp(p.y, exponent), std::ldexp(p.z, exponent)};
-  }
+void scale_points(std::vector<Point3>& points, int exponent, int threads) {
+  in_parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      Point3& p = points[i];
+      p = {std::ldexp(p.x, exponent), std::ldexp(p.y, exponent), std::ldexp(p.z, exponent)};
+    }
+  });
 }
 
 // points[i] = old points[from[i]] for a permutation `from`. Through a second array: this runs
 // before the store grows or after it is released, below the run's peak either way, and a gather
-// is faster than following the permutation's cycles in place.
-void permute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from) {
+// is faster than following the permutation's cycles in place (and splits over threads).
+void permute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from, int threads) {
   std::vector<Point3> gathered(points.size());
-  for (std::size_t i = 0; i < gathered.size(); ++i) gathered[i] = points[from[i]];
+  in_parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) gathered[i] = points[from[i]];
+  });
   points.swap(gathered);
 }
 
-// The inverse: points[from[i]] = old points[i].
-void unpermute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from) {
+// The inverse: points[from[i]] = old points[i] (each thread writes distinct entries).
+void unpermute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from, int threads) {
   std::vector<Point3> scattered(points.size());
-  for (std::size_t i = 0; i < scattered.size(); ++i) scattered[from[i]] = points[i];
+  in_parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) scattered[from[i]] = points[i];
+  });
   points.swap(scattered);
 }
 
@@ -297,6 +308,9 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   Triangulation result;
   TriangulationStats& stats = result.stats;
   const std::size_t input_count = points.size();
+  // The steps over whole arrays before the first insertion and after the last run on the
+  // method's threads (one for the sequential engine, so that its time stays one thread's).
+  const int threads = options.method == Method::Sequential ? 1 : std::max(1, options.threads);
   stats.points = input_count;
   if (input_count >= static_cast<std::size_t>(kInfiniteVertex) - 8) {
     throw TriangulationError("too many points for 32-bit vertex ids");
@@ -328,7 +342,7 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   // close in memory.
   std::vector<std::uint32_t> input_index;  // engine vertex id -> input index (walk mode)
   if (options.location == Location::Walk) {
-    brio_hilbert_order(points, order);
+    brio_hilbert_order(points, order, threads);
     input_index = std::move(order);
     // The first tetrahedron's engine ids, by one pass over the map rather than through its
     // inverse: a 4-byte-a-point inverse came from the heap (glibc raises its mmap threshold once
@@ -339,7 +353,7 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
         if (input_index[i] == simplex_input[k]) simplex[k] = static_cast<std::uint32_t>(i);
       }
     }
-    permute(points, input_index);
+    permute(points, input_index, threads);
     order.clear();  // the identity: insertion order is storage order now (4 bytes a point less)
     order.shrink_to_fit();
   }
@@ -352,18 +366,19 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
   if (scaling.lossless) {
     stats.scale_exponent = scaling.exponent;
-    scale_points(points, scaling.exponent);
+    scale_points(points, scaling.exponent, threads);
   }
   // The caller's points again: unscaled (exact, the scaling is lossless), auxiliary points
   // dropped, in input order.
   auto restore_points = [&] {
     points.resize(input_count);
-    if (scaling.lossless) scale_points(points, -scaling.exponent);
-    if (!input_index.empty()) unpermute(points, input_index);
+    if (scaling.lossless) scale_points(points, -scaling.exponent, threads);
+    if (!input_index.empty()) unpermute(points, input_index, threads);
   };
 
   // The store's limit ends the run with the input's size in the message (tet_mesh.hpp).
   auto run = [&](const std::array<std::uint32_t, 4>& first, bool skip_first) {
+    stats.seconds.ordering = std::chrono::duration<double>(Clock::now() - start).count();
     try {
       return dispatch(points, input_count, order, first, skip_first, options, stats);
     } catch (const StoreFull& e) {
@@ -406,14 +421,19 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
     }
     result.tetrahedra = run({n, n + 1, n + 2, n + 3}, false);
   }
+  const auto finish_start = Clock::now();
   if (as_given == nullptr) restore_points();
   const std::vector<Point3>& input = as_given != nullptr ? *as_given : points;
   if (!input_index.empty()) {
-    for (auto& t : result.tetrahedra) {
-      for (auto& v : t) v = input_index[v];
-    }
+    std::vector<Tetrahedron>& tets = result.tetrahedra;
+    in_parallel_ranges(tets.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) {
+        for (auto& v : tets[i]) v = input_index[v];
+      }
+    });
     if (stats.duplicates > 0) name_duplicates_by_lowest_index(input, result.tetrahedra);
   }
+  stats.seconds.output += std::chrono::duration<double>(Clock::now() - finish_start).count();
   stats.tetrahedra = result.tetrahedra.size();
   // The post-check's validation is a measurement, not part of the method.
   stats.seconds.total =
@@ -462,7 +482,9 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"location", s.seconds.location},
                   {"subdivision", s.seconds.subdivision},
                   {"legalization", s.seconds.legalization},
-                  {"other", s.seconds.other}};
+                  {"other", s.seconds.other},
+                  {"ordering", s.seconds.ordering},
+                  {"output", s.seconds.output}};
   j["flips"] = {
       {"S23", s.flips.s23}, {"S32", s.flips.s32}, {"S22", s.flips.s22}, {"S44", s.flips.s44}};
   j["cavity"] = {{"insertions", s.cavity.insertions},

@@ -23,6 +23,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
 
 namespace dtlab::engine {
@@ -186,6 +187,13 @@ class TetStore {
     for (std::size_t b = first >> kBlockBits; b <= (first + count - 1) >> kBlockBits; ++b) {
       ensure_block(b);
     }
+    // The run over a block's middle slot maps the next block ahead of need (one run, so one
+    // thread): the threads that reach it later find it ready instead of waiting for its mapping.
+    const std::size_t next = (first >> kBlockBits) + 1;
+    const std::size_t middle = ((next - 1) << kBlockBits) + kBlockSize / 2;
+    if (first <= middle && middle < first + count && (next << kBlockBits) < capacity_) {
+      ensure_block(next);
+    }
     for (std::size_t t = first; alive_in_record_ && t < first + count; ++t) {
       (*this)[static_cast<TetId>(t)].vertex[3] = kDeadVertex;
     }
@@ -199,8 +207,9 @@ class TetStore {
   // that took it has not installed yet: a scan over ids (not reached through a reference) asks
   // this first.
   [[nodiscard]] bool has_block(TetId t) const {
-    return (t >> kBlockBits) < kMaxBlocks &&
-           blocks_[t >> kBlockBits].load(std::memory_order_acquire) != nullptr;
+    if ((t >> kBlockBits) >= kMaxBlocks) return false;
+    const char* block = blocks_[t >> kBlockBits].load(std::memory_order_acquire);
+    return block != nullptr && block != being_mapped();
   }
   // Slots handed out (a refused allocate counted no slot).
   [[nodiscard]] std::size_t size() const {
@@ -208,6 +217,10 @@ class TetStore {
     return n < capacity_ ? n : capacity_;
   }
   [[nodiscard]] std::size_t capacity() const { return capacity_; }
+  // Blocks mapped so far (each once, however many threads needed it at the same time).
+  [[nodiscard]] std::size_t blocks_mapped() const {
+    return blocks_mapped_.load(std::memory_order_relaxed);
+  }
   // A smaller capacity (a memory cap; tests reach the limit with it). Before the first allocate.
   void set_capacity(std::size_t tets) { capacity_ = tets < kMaxTets ? tets : kMaxTets; }
   // Tests only: the next slot is `first` (its block is allocated on demand), to reach the 2^30
@@ -215,13 +228,38 @@ class TetStore {
   void skip_to_for_testing(std::size_t first) { size_.store(first, std::memory_order_relaxed); }
 
  private:
+  // A block is mapped by one thread: the first to need it marks its entry being_mapped() and
+  // maps it (new_block touches every page of a parallel run's block); a thread that needs it
+  // meanwhile waits. (When every thread that needed it mapped its own copy and all but one unmapped
+  // theirs, 16 threads faulted in 16 copies of each block, and each unmapping interrupted every
+  // core for its TLBs.) Waits are rare: allocate_run maps each next block ahead.
   void ensure_block(std::size_t block) {
-    if (blocks_[block].load(std::memory_order_acquire) != nullptr) return;
-    char* fresh = new_block();
-    char* expected = nullptr;
-    if (!blocks_[block].compare_exchange_strong(expected, fresh, std::memory_order_acq_rel)) {
-      free_block(fresh);  // another thread installed it first
+    std::atomic<char*>& entry = blocks_[block];
+    while (true) {
+      char* seen = entry.load(std::memory_order_acquire);
+      if (seen == being_mapped()) {
+        std::this_thread::yield();
+        continue;
+      }
+      if (seen != nullptr) return;
+      if (!entry.compare_exchange_strong(seen, being_mapped(), std::memory_order_acquire)) {
+        continue;
+      }
+      try {
+        char* fresh = new_block();
+        blocks_mapped_.fetch_add(1, std::memory_order_relaxed);
+        entry.store(fresh, std::memory_order_release);  // the block's objects before its address
+      } catch (...) {
+        entry.store(nullptr, std::memory_order_release);  // a waiting thread tries itself
+        throw;
+      }
+      return;
     }
+  }
+  // The mark of a block entry whose block one thread is mapping: never a block's address.
+  static char* being_mapped() {
+    static char mark = 0;
+    return &mark;
   }
 
   // Blocks are mapped from the system directly (2 MiB for a sequential walk, 3.3 with DAG
@@ -272,11 +310,12 @@ class TetStore {
                   std::is_trivially_destructible_v<Children> &&
                   std::is_trivially_destructible_v<std::atomic<bool>> &&
                   std::is_trivially_destructible_v<std::atomic<std::uint32_t>>);
-    if (block != nullptr) munmap(block, block_bytes());
+    if (block != nullptr && block != being_mapped()) munmap(block, block_bytes());
   }
 
   std::unique_ptr<std::atomic<char*>[]> blocks_;
   std::atomic<std::size_t> size_{0};
+  std::atomic<std::size_t> blocks_mapped_{0};
   bool children_ = true;
   bool lock_words_ = true;
   bool alive_in_record_ = false;  // neither lock words nor children: a sequential walk

@@ -94,12 +94,20 @@ struct CavityCounts {
                                 // inserted by flips
 };
 
+// Seconds of a run. location, subdivision and legalization are summed over the inserting
+// threads (CPU seconds: on several threads their sum can exceed total); other is total less
+// their sum, at least 0. ordering and output are wall-clock and part of total: the steps before
+// the first insertion (checking, ordering, renumbering and scaling the points) and after the
+// last (collecting the tetrahedra, naming them in input order, restoring the points), which
+// a parallel method runs on its threads too.
 struct PhaseSeconds {
   double total = 0.0;
   double location = 0.0;
   double subdivision = 0.0;
   double legalization = 0.0;
   double other = 0.0;
+  double ordering = 0.0;
+  double output = 0.0;
 };
 
 // Counters of one inserting thread of a parallel method.

@@ -1,0 +1,34 @@
+#pragma once
+// The run's threads over the whole-array steps before the first insertion and after the last
+// (the insertion order, the output, the repair's scan): each thread one contiguous range.
+#include <algorithm>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace dtlab::engine {
+
+// Below this many items a step runs on the caller's thread alone: starting a thread costs about
+// as much as a few thousand items' work.
+inline constexpr std::size_t kParallelMinimum = 4096;
+
+// Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges, one thread each
+// (the caller's thread takes the last); with parts <= 1, or n below kParallelMinimum, it runs
+// inline as part 0 alone. `work` must not throw (a thread's exception would terminate).
+template <class Work>
+void in_parallel_ranges(std::size_t n, int parts, Work work) {
+  const auto count = static_cast<std::size_t>(std::max(parts, 1));
+  if (count == 1 || n < kParallelMinimum) {
+    work(std::size_t{0}, n, std::size_t{0});
+    return;
+  }
+  std::vector<std::thread> helpers;
+  helpers.reserve(count - 1);
+  for (std::size_t part = 0; part + 1 < count; ++part) {
+    helpers.emplace_back(work, n * part / count, n * (part + 1) / count, part);
+  }
+  work(n * (count - 1) / count, n, count - 1);
+  for (std::thread& h : helpers) h.join();
+}
+
+}  // namespace dtlab::engine

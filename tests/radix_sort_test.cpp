@@ -1,0 +1,64 @@
+// The engine's stable radix sort of (key, id) pairs: the order of std::stable_sort by key, on one
+// thread and on several, with keys that share digits (skipped passes), many equal keys (stability)
+// and sizes around the split's minimum.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "parallel_ranges.hpp"
+#include "radix_sort.hpp"
+
+namespace dtlab::test {
+namespace {
+
+using engine::KeyedId;
+
+std::vector<KeyedId> sorted_by_std(std::vector<KeyedId> items) {
+  std::stable_sort(items.begin(), items.end(),
+                   [](const KeyedId& a, const KeyedId& b) { return a.first < b.first; });
+  return items;
+}
+
+TEST(StableSortByKey, AnyThreadCountGivesStdStableSortsOrder) {
+  std::mt19937_64 random(20261125);
+  const std::size_t minimum = engine::kParallelMinimum;
+  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{1000}, 2 * minimum - 1,
+                              2 * minimum, 3 * minimum + 17, std::size_t{200000}}) {
+    // Keys: a few distinct values spread over bytes 1, 3 and 7 (the other bytes never vary, so
+    // their passes are skipped); ids number the items, so that stability is visible.
+    std::vector<KeyedId> items(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t r = random() % 97;
+      const std::uint64_t key = ((r % 7) << 8) | ((r / 7 % 5) << 24) | ((r % 3) << 56);
+      items[i] = {key, static_cast<std::uint32_t>(i)};
+    }
+    const std::vector<KeyedId> expected = sorted_by_std(items);
+    for (const int threads : {1, 2, 3, 8}) {
+      std::vector<KeyedId> sorted = items;
+      std::vector<KeyedId> scratch(n);
+      engine::stable_sort_by_key(sorted.data(), scratch.data(), n, threads);
+      EXPECT_EQ(sorted, expected) << "n " << n << ", threads " << threads;
+    }
+  }
+}
+
+TEST(StableSortByKey, FullWidthRandomKeysOnSeveralThreads) {
+  std::mt19937_64 random(7);
+  std::vector<KeyedId> items(300000);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    items[i] = {random(), static_cast<std::uint32_t>(i)};
+  }
+  const std::vector<KeyedId> expected = sorted_by_std(items);
+  for (const int threads : {2, 5}) {
+    std::vector<KeyedId> sorted = items;
+    std::vector<KeyedId> scratch(items.size());
+    engine::stable_sort_by_key(sorted.data(), scratch.data(), sorted.size(), threads);
+    EXPECT_EQ(sorted, expected) << threads;
+  }
+}
+
+}  // namespace
+}  // namespace dtlab::test
