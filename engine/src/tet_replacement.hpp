@@ -13,6 +13,7 @@
 #include <cassert>
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -341,7 +342,7 @@ class TetReplacement {
   // period is over), so writing them changes nothing anyone can see. Only then is the pairing
   // checked; an impossible one gives the slots back. The outside's references to the new
   // tetrahedra, the deaths and the births come after the check, as in commit_replacement.
-  Replaced replace_cavity(VertexId p, const std::vector<CavityFace>& boundary) {
+  Replaced replace_cavity(VertexId p, std::span<const CavityFace> boundary) {
     assert(!dag_);
     const std::size_t n = boundary.size();
     scratch_created_.resize(n);
