@@ -283,13 +283,13 @@ class OptimisticSync {
         if (mesh_.tets.has_children()) {
           mesh_.tets.children(it->tet)[i].store(it->child[i], std::memory_order_relaxed);
         }
-      mesh_.tets.set_alive(it->tet, true, std::memory_order_release);
+      mesh_.tets.set_alive(it->tet, true);
     }
     for (const TetId t : created_) {
       if (mesh_.tets.has_children()) {
         for (auto& c : mesh_.tets.children(t)) c.store(kNoTet, std::memory_order_relaxed);
       }
-      mesh_.tets.set_alive(t, false, std::memory_order_release);
+      mesh_.tets.set_alive(t, false);
     }
     log_.clear();
     created_.clear();

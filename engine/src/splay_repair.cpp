@@ -697,8 +697,8 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     mesh.tets[ref_tet(a)].neighbor[static_cast<std::size_t>(ref_face(a))] = b;
     mesh.tets[ref_tet(b)].neighbor[static_cast<std::size_t>(ref_face(b))] = a;
   }
-  for (const TetId t : dying) mesh.tets.set_alive(t, false, std::memory_order_release);
-  for (const TetId t : ids) mesh.tets.set_alive(t, true, std::memory_order_release);
+  for (const TetId t : dying) mesh.tets.set_alive(t, false);
+  for (const TetId t : ids) mesh.tets.set_alive(t, true);
   stats.tetrahedra_removed = dying.size();
   stats.tetrahedra_created = created.size();
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -238,7 +238,7 @@ class TetReplacement {
     // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
     for (const TetId o : scratch_old_) {
       if (recycle_) {
-        mesh_.tets.set_alive(o, false, std::memory_order_release);
+        mesh_.tets.set_alive(o, false);
         slots_.retire(o);
         sync_.killed(o);
         continue;
@@ -248,12 +248,12 @@ class TetReplacement {
         for (std::size_t j = 0; j < count; ++j)
           children[j].store(ids[j], std::memory_order_release);
       }
-      mesh_.tets.set_alive(o, false, std::memory_order_release);
+      mesh_.tets.set_alive(o, false);
       sync_.killed(o);
     }
     scratch_created_.assign(ids.begin(), ids.begin() + n);
     for (std::size_t j = 0; j < count; ++j) {
-      mesh_.tets.set_alive(ids[j], true, std::memory_order_release);
+      mesh_.tets.set_alive(ids[j], true);
     }
     return Replaced::Done;
   }
@@ -375,7 +375,7 @@ class TetReplacement {
     if (edges.third_face() || 2 * edges.size() != 3 * n) {
       for (std::size_t j = n; j-- > 0;) {
         // Dead again: where aliveness is kept in the record, writing the record made it look alive.
-        mesh_.tets.set_alive(ids[j], false, std::memory_order_relaxed);
+        mesh_.tets.set_alive<std::memory_order_relaxed>(ids[j], false);
         slots_.give_back(ids[j]);
       }
       scratch_created_.clear();
@@ -391,12 +391,11 @@ class TetReplacement {
       store_neighbor(mesh_.tets[ref_tet(b.outside)], ref_face(b.outside), face_ref(ids[j], b.face));
     }
     for (const TetId o : scratch_old_) {
-      mesh_.tets.set_alive(o, false, std::memory_order_release);
+      mesh_.tets.set_alive(o, false);
       slots_.retire(o);
       sync_.killed(o, /*last_write=*/true);
     }
-    for (std::size_t j = 0; j < n; ++j)
-      mesh_.tets.set_alive(ids[j], true, std::memory_order_release);
+    for (std::size_t j = 0; j < n; ++j) mesh_.tets.set_alive(ids[j], true);
     return Replaced::Done;
   }
 
@@ -448,7 +447,7 @@ class TetReplacement {
     // A recycling engine keeps no history: the old slots are reused after this insertion.
     for (std::size_t r = 0; r < scratch_old_.size(); ++r) {
       if (recycle_) {
-        mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
+        mesh_.tets.set_alive(scratch_old_[r], false);
         slots_.retire(scratch_old_[r]);
         sync_.killed(scratch_old_[r]);
         continue;
@@ -460,11 +459,10 @@ class TetReplacement {
               scratch_created_[j], std::memory_order_release);
         }
       }
-      mesh_.tets.set_alive(scratch_old_[r], false, std::memory_order_release);
+      mesh_.tets.set_alive(scratch_old_[r], false);
       sync_.killed(scratch_old_[r]);
     }
-    for (const TetId id : scratch_created_)
-      mesh_.tets.set_alive(id, true, std::memory_order_release);
+    for (const TetId id : scratch_created_) mesh_.tets.set_alive(id, true);
     return Replaced::Done;
   }
 
