@@ -12,13 +12,15 @@ namespace dtlab::engine {
 // as much as a few thousand items' work.
 inline constexpr std::size_t kParallelMinimum = 4096;
 
-// Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges, one thread each
-// (the caller's thread takes the last); with parts <= 1, or n below kParallelMinimum, it runs
-// inline as part 0 alone. `work` must not throw (a thread's exception would terminate).
+// Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges (at most n), one
+// thread each (the caller's thread takes the last); with parts <= 1, or n below `minimum`, it
+// runs inline as part 0 alone. `work` must not throw (a thread's exception would terminate).
 template <class Work>
-void in_parallel_ranges(std::size_t n, int parts, Work work) {
-  const auto count = static_cast<std::size_t>(std::max(parts, 1));
-  if (count == 1 || n < kParallelMinimum) {
+void in_parallel_ranges(std::size_t n, int parts, Work work,
+                        std::size_t minimum = kParallelMinimum) {
+  const auto count =
+      std::min(static_cast<std::size_t>(std::max(parts, 1)), std::max<std::size_t>(n, 1));
+  if (count == 1 || n < minimum) {
     work(std::size_t{0}, n, std::size_t{0});
     return;
   }

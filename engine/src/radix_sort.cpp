@@ -54,31 +54,32 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
   // Each thread owns one range of the array; per digit it counts its range's items by digit,
   // then (after a barrier) places them after every item of a lower digit and every item of its
   // own digit in a lower range: the order of equal digits is the array's, so the sort is stable.
-  std::vector<std::uint64_t> all_ones(parts, ~std::uint64_t{0});
-  std::vector<std::uint64_t> any_one(parts, 0);
+  // Per range: the bits set in all its keys, and those set in any.
+  std::vector<std::uint64_t> set_in_all(parts, ~std::uint64_t{0});
+  std::vector<std::uint64_t> set_in_any(parts, 0);
   std::vector<std::array<std::size_t, 256>> count(parts);
   std::barrier<> step(static_cast<std::ptrdiff_t>(parts));
   auto work = [&](std::size_t part) {
     const std::size_t begin = n * part / parts;
     const std::size_t end = n * (part + 1) / parts;
-    std::uint64_t ones = ~std::uint64_t{0};
-    std::uint64_t some = 0;
+    std::uint64_t in_all = ~std::uint64_t{0};
+    std::uint64_t in_any = 0;
     for (std::size_t i = begin; i < end; ++i) {
-      ones &= items[i].first;
-      some |= items[i].first;
+      in_all &= items[i].first;
+      in_any |= items[i].first;
     }
-    all_ones[part] = ones;  // once: the parts' entries share a cache line
-    any_one[part] = some;
+    set_in_all[part] = in_all;  // once: the ranges' entries share a cache line
+    set_in_any[part] = in_any;
     step.arrive_and_wait();
     // The bits that differ between two keys somewhere; a digit without one is skipped (every
     // thread reads the same answer, so all take the same barriers).
-    std::uint64_t shared_ones = ~std::uint64_t{0};
-    std::uint64_t some_ones = 0;
+    std::uint64_t in_all_keys = ~std::uint64_t{0};
+    std::uint64_t in_any_key = 0;
     for (std::size_t p = 0; p < parts; ++p) {
-      shared_ones &= all_ones[p];
-      some_ones |= any_one[p];
+      in_all_keys &= set_in_all[p];
+      in_any_key |= set_in_any[p];
     }
-    const std::uint64_t varying = shared_ones ^ some_ones;
+    const std::uint64_t varying = in_all_keys ^ in_any_key;
     KeyedId* from = items;
     KeyedId* to = scratch;
     for (int d = 0; d < kDigits; ++d) {

@@ -4,7 +4,6 @@
 // for the store, whose records follow the locking rules of docs/design.md.
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -42,82 +41,10 @@ struct SharedMesh {
   }
 
  private:
-  // The store's blocks are counted, then copied, by `threads` threads: each takes its share of
-  // the blocks, and a block's tetrahedra go after those of every lower block. The copy goes a
-  // group of `threads` blocks at a time: the output grows (and is paged in) by one group while
-  // the group's blocks are let go, so the two never coexist whole.
+  // The store's blocks are counted, then copied, by `threads` threads (shared_mesh.cpp).
   std::vector<Tetrahedron> collect(VertexId vertex_limit,
                                    const std::vector<std::pair<VertexId, VertexId>>& duplicates,
-                                   bool release, int threads) const {
-    std::vector<VertexId> representative;
-    if (!duplicates.empty()) {
-      representative.resize(points.size());
-      for (std::size_t i = 0; i < representative.size(); ++i) {
-        representative[i] = static_cast<VertexId>(i);
-      }
-      for (const auto& [duplicate, vertex] : duplicates) {
-        representative[vertex] = std::min(representative[vertex], duplicate);
-      }
-    }
-    auto kept = [&](TetId id) {
-      const Tet& t = tets[id];
-      return tets.is_alive(id, std::memory_order_acquire) && !t.is_infinite() &&
-             t.vertex[0] < vertex_limit && t.vertex[1] < vertex_limit &&
-             t.vertex[2] < vertex_limit && t.vertex[3] < vertex_limit;
-    };
-    const std::size_t n = tets.size();
-    const std::size_t blocks = (n + TetStore::kBlockSize - 1) / TetStore::kBlockSize;
-    const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
-                                                      std::max<std::size_t>(blocks, 1));
-    auto slots_of = [&](std::size_t block) {
-      return std::pair{block * TetStore::kBlockSize,
-                       std::min(n, (block + 1) * TetStore::kBlockSize)};
-    };
-    // Runs work(block) for blocks [begin, end), `parts` threads each over a contiguous share.
-    auto over_blocks = [&](std::size_t begin, std::size_t end, auto work) {
-      const std::size_t count = end - begin;
-      const std::size_t used = std::min(parts, count);
-      auto share = [&](std::size_t part) {
-        for (std::size_t b = begin + count * part / used; b < begin + count * (part + 1) / used;
-             ++b) {
-          work(b);
-        }
-      };
-      std::vector<std::thread> helpers;
-      for (std::size_t part = 0; part + 1 < used; ++part) helpers.emplace_back(share, part);
-      if (used > 0) share(used - 1);
-      for (std::thread& h : helpers) h.join();
-    };
-    // first[b]: where block b's first kept tetrahedron goes.
-    std::vector<std::size_t> first(blocks + 1, 0);
-    over_blocks(0, blocks, [&](std::size_t block) {
-      const auto [begin, end] = slots_of(block);
-      std::size_t count = 0;
-      for (std::size_t i = begin; i < end; ++i) count += kept(static_cast<TetId>(i)) ? 1 : 0;
-      first[block + 1] = count;
-    });
-    for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
-    std::vector<Tetrahedron> out;
-    out.reserve(first[blocks]);  // exactly the size needed: no growth while blocks are let go
-    for (std::size_t group = 0; group < blocks; group += parts) {
-      const std::size_t group_end = std::min(blocks, group + parts);
-      out.resize(first[group_end]);
-      over_blocks(group, group_end, [&](std::size_t block) {
-        const auto [begin, end] = slots_of(block);
-        std::size_t at = first[block];
-        for (std::size_t i = begin; i < end; ++i) {
-          if (!kept(static_cast<TetId>(i))) continue;
-          Tetrahedron& t = out[at++];
-          t = tets[static_cast<TetId>(i)].vertex;
-          if (!representative.empty()) {
-            for (auto& v : t) v = representative[v];
-          }
-        }
-        if (release && begin < end) tets.release_block_of(static_cast<TetId>(begin));
-      });
-    }
-    return out;
-  }
+                                   bool release, int threads) const;
 };
 
 // Neighbour references are read by walking threads that hold no lock, so they are written with

@@ -191,15 +191,20 @@ class TetStore {
     for (std::size_t b = first >> kBlockBits; b <= (first + count - 1) >> kBlockBits; ++b) {
       ensure_block(b);
     }
+    for (std::size_t t = first; alive_in_record_ && t < first + count; ++t) {
+      (*this)[static_cast<TetId>(t)].vertex[3] = kDeadVertex;
+    }
     // The run over a block's middle slot maps the next block ahead of need (one run, so one
     // thread): the threads that reach it later find it ready instead of waiting for its mapping.
+    // Only a head start: when the system has no memory for it, the thread that needs the block
+    // maps it (or reports that) later, and this run keeps its slots.
     const std::size_t next = (first >> kBlockBits) + 1;
     const std::size_t middle = ((next - 1) << kBlockBits) + kBlockSize / 2;
     if (first <= middle && middle < first + count && (next << kBlockBits) < capacity_) {
-      ensure_block(next);
-    }
-    for (std::size_t t = first; alive_in_record_ && t < first + count; ++t) {
-      (*this)[static_cast<TetId>(t)].vertex[3] = kDeadVertex;
+      try {
+        ensure_block(next);
+      } catch (const std::bad_alloc&) {  // ensure_block left the entry unmapped
+      }
     }
     return static_cast<TetId>(first);
   }
@@ -235,8 +240,8 @@ class TetStore {
   // A block is mapped by one thread: the first to need it marks its entry being_mapped() and
   // maps it (new_block touches every page of a parallel run's block); a thread that needs it
   // meanwhile waits. (When every thread that needed it mapped its own copy and all but one unmapped
-  // theirs, 16 threads faulted in 16 copies of each block, and each unmapping interrupted every
-  // core for its TLBs.) Waits are rare: allocate_run maps each next block ahead.
+  // theirs, up to 16 threads faulted in a copy each of a block, and each unmapping interrupted
+  // every core for its TLBs.) Waits are rare: allocate_run maps each next block ahead.
   void ensure_block(std::size_t block) {
     std::atomic<char*>& entry = blocks_[block];
     while (true) {

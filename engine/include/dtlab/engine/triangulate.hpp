@@ -99,7 +99,8 @@ struct CavityCounts {
 // their sum, at least 0. ordering and output are wall-clock and part of total: the steps before
 // the first insertion (checking, ordering, renumbering and scaling the points) and after the
 // last (collecting the tetrahedra, naming them in input order, restoring the points), which
-// a parallel method runs on its threads too.
+// a parallel method runs on its threads too. (Burglary's post-check collects the mesh again after
+// a repair: that collection is the repair's, in post_check.seconds_repair.)
 struct PhaseSeconds {
   double total = 0.0;
   double location = 0.0;
