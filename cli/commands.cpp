@@ -101,7 +101,8 @@ int run_triangulate(const TriangulateArgs& args) {
   const std::vector<predicates::Point3>& points = result.points;
 
   std::optional<engine::ValidationReport> report;
-  if (args.validate) report = engine::validate(points, result.tetrahedra, args.validate_with);
+  if (args.validate)
+    report = engine::validate(points, result.tetrahedra, args.validate_with, engine::kAllThreads);
 
   if (!args.output.empty()) {
     if (ends_with(args.output, ".ele")) {
@@ -248,7 +249,8 @@ int run_validate(const std::string& points_path, const std::string& mesh,
   const auto points = io::read_points(points_path);
   const int base = io::node_index_base(points_path);
   const auto tets = io::read_ele(mesh, points.size(), base);
-  const engine::ValidationReport report = engine::validate(points, tets, kernel);
+  const engine::ValidationReport report =
+      engine::validate(points, tets, kernel, engine::kAllThreads);
   std::cout << report.json() << "\n";
   return report.valid() ? 0 : 1;
 }
@@ -263,7 +265,9 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
   engine::SplayStats stats;
   const auto repaired = engine::repair(points, tets, stats);
   std::optional<engine::ValidationReport> report;
-  if (validate) report = engine::validate(points, repaired, engine::ValidateWith::Adaptive);
+  if (validate)
+    report =
+        engine::validate(points, repaired, engine::ValidateWith::Adaptive, engine::kAllThreads);
   if (!output.empty()) {
     if (ends_with(output, ".ele")) {
       io::write_node(output.substr(0, output.size() - 4) + ".node", points);

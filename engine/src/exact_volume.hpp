@@ -7,6 +7,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "dtlab/engine/tetrahedron.hpp"
@@ -25,10 +26,20 @@ class ExactGrid {
   int unit_exponent_ = 0;
 };
 
-// 6 * det[b - a; c - a; d - a] summed over the tetrahedra marked usable.
+// A face of the mesh by its sorted vertex ids, and the sum over the tetrahedra that have it of +1
+// where their outward triple (kFaceVertex) is an even permutation of `key`, -1 where it is odd.
+struct SignedFace {
+  std::array<std::uint32_t, 3> key;
+  std::int32_t multiplicity;
+};
+
+// 6 * the sum of the tetrahedra's signed volumes det[b - a; c - a; d - a], from their faces: each
+// such determinant is the sum of det[p - o; q - o; r - o] over the tetrahedron's four outward
+// triples (p, q, r), for any fixed point o, so the total is the sum over the distinct faces of
+// multiplicity * det[key - o]. A face of two consistent tetrahedra has multiplicity 0: only the
+// boundary and the broken faces are computed (docs/design.md, "The validator").
 mpz_class six_mesh_volume(const std::vector<predicates::Point3>& points,
-                          const std::vector<Tetrahedron>& tets, const std::vector<bool>& usable,
-                          const ExactGrid& grid);
+                          const std::vector<SignedFace>& faces, const ExactGrid& grid);
 
 // 6 * the volume of the convex hull of the points (0 when their affine dimension is below 3).
 mpz_class six_hull_volume(const std::vector<predicates::Point3>& points, const ExactGrid& grid);

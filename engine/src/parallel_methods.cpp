@@ -196,7 +196,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   // Validates `tets`, records the verdict as the latest stage's, returns the violations left.
   auto count = [&](const std::vector<Tetrahedron>& tets) {
     const auto t0 = Clock::now();
-    const ValidationReport report = validate(input, tets);
+    const ValidationReport report = validate(input, tets, ValidateWith::Adaptive, kAllThreads);
     check.seconds_check += std::chrono::duration<double>(Clock::now() - t0).count();
     check.non_delaunay_faces_after = report.non_delaunay_faces;
     check.reflex_boundary_edges_after = report.reflex_boundary_edges;

@@ -50,7 +50,7 @@ inline const std::vector<std::array<double, 4>>& probe_weights(bool all) {
 // their centroid.
 template <class K>
 ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
-                             const std::vector<Tetrahedron>& tets, const std::vector<bool>& usable,
+                             const std::vector<Tetrahedron>& tets, const std::vector<char>& usable,
                              const std::vector<char>& near_reflex, std::size_t max_probes) {
   using predicates::Point3;
   auto strictly_inside = [&](const Tetrahedron& t, const Point3& q) {
@@ -85,7 +85,7 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
   };
   std::vector<char> taken(tets.size(), 0);
   for (std::size_t i = 0; i < tets.size() && probes.size() < max_probes; ++i) {
-    if (!usable[i]) continue;
+    if (usable[i] == 0) continue;
     const Tetrahedron& t = tets[i];
     if (near_reflex[t[0]] != 0 || near_reflex[t[1]] != 0 || near_reflex[t[2]] != 0 ||
         near_reflex[t[3]] != 0) {
@@ -98,7 +98,7 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
   const std::size_t stride =
       room == 0 ? tets.size() + 1 : std::max<std::size_t>(1, (tets.size() + room - 1) / room);
   for (std::size_t i = 0; i < tets.size() && probes.size() < max_probes; i += stride) {
-    if (usable[i] && taken[i] == 0) add_probes(i, false);
+    if (usable[i] != 0 && taken[i] == 0) add_probes(i, false);
   }
   ProbeCoverage result;
   if (probes.empty()) return result;
@@ -177,7 +177,7 @@ ProbeCoverage probe_coverage(const std::vector<predicates::Point3>& pts,
     return true;
   };
   for (std::size_t i = 0; i < tets.size() && result.complete; ++i) {
-    if (usable[i]) result.complete = scan(i);
+    if (usable[i] != 0) result.complete = scan(i);
   }
   for (const Probe& p : probes) {
     ++result.probes;

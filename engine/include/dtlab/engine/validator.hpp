@@ -62,7 +62,10 @@ struct ValidationReport {
 enum class ValidateWith { Adaptive, Exact };
 const char* to_string(ValidateWith k);
 
+// `threads`: how many threads share the work (the report is the same for every count);
+// kAllThreads: one per hardware thread.
+inline constexpr int kAllThreads = 0;
 ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets,
-                          ValidateWith kernel = ValidateWith::Adaptive);
+                          ValidateWith kernel = ValidateWith::Adaptive, int threads = 1);
 
 }  // namespace dtlab::engine
