@@ -398,6 +398,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // write-back below, in that order).
   const std::size_t slots = mesh.tets.size();
   const LiveTetrahedra listed = live_tetrahedra(mesh, parts);
+  stats.seconds_listing = std::chrono::duration<double>(Clock::now() - t0).count();
   const std::vector<TetId>& live = listed.ordered;
   const std::vector<TetId>& lowest_tetrahedron = listed.lowest_tetrahedron;
   auto is_vertex = [&](VertexId v) { return lowest_tetrahedron[v] != kNoTet; };

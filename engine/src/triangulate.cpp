@@ -588,6 +588,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"tetrahedra_created", r.tetrahedra_created},
                   {"seconds", r.seconds},
                   {"seconds_scan", r.seconds_scan},
+                  {"seconds_listing", r.seconds_listing},
                   {"scan_threads", r.scan_threads}};
   }
   j["repair"] = to_string(options.repair);

@@ -168,6 +168,7 @@ struct SplayStats {
   std::uint64_t tetrahedra_created = 0;
   double seconds = 0.0;            // scan, splaying and writing back (included in seconds.total)
   double seconds_scan = 0.0;       // of which the store pass and the exact scan
+  double seconds_listing = 0.0;    // of which the store pass (the live tetrahedra in scan order)
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };
 

@@ -65,8 +65,11 @@ inline FilteredValue orient3d_float(const Point3& a, const Point3& b, const Poin
 //   det4 = (m01 n23 + m23 n01) - (m02 n13 + m13 n02) + (m03 n12 + m12 n03),
 // and dtlab's insphere is the sign of -det4, evaluated as
 //   (m02 n13 + m13 n02) - ((m01 n23 + m23 n01) + (m03 n12 + m12 n03)).
-inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Point3& c,
-                                    const Point3& d, const Point3& e) {
+// kWithBound = false computes the determinant alone (the permanent is most of the rest of the
+// work), for the semi-static filter: the same operations, so the same rounded value.
+template <bool kWithBound>
+inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const Point3& c,
+                                       const Point3& d, const Point3& e) {
   const double x0 = a.x - e.x, y0 = a.y - e.y, z0 = a.z - e.z;
   const double x1 = b.x - e.x, y1 = b.y - e.y, z1 = b.z - e.z;
   const double x2 = c.x - e.x, y2 = c.y - e.y, z2 = c.z - e.z;
@@ -88,6 +91,7 @@ inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Poin
   const double n01 = z0l1 - z1l0, n02 = z0l2 - z2l0, n03 = z0l3 - z3l0;
   const double n12 = z1l2 - z2l1, n13 = z1l3 - z3l1, n23 = z2l3 - z3l2;
   const double det = (m02 * n13 + m13 * n02) - ((m01 * n23 + m23 * n01) + (m03 * n12 + m12 * n03));
+  if constexpr (!kWithBound) return {det, 0.0, 0.0, 0.0};
 
   using std::fabs;
   const double pm01 = fabs(x0y1) + fabs(x1y0), pm02 = fabs(x0y2) + fabs(x2y0);
@@ -103,6 +107,17 @@ inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Poin
   const double r1 = ((lift0 + lift1) + (lift2 + lift3)) + 1.0;
   const double underflow = (96.0 * bounds::kUnderflowUnit) * (r1 * r1);
   return {det, bounds::kInsphereA * permanent + underflow, permanent, underflow};
+}
+
+inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d, const Point3& e) {
+  return insphere_evaluate<true>(a, b, c, d, e);
+}
+
+// insphere_float's determinant alone.
+inline double insphere_det(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                           const Point3& e) {
+  return insphere_evaluate<false>(a, b, c, d, e).det;
 }
 
 // orient2d in the projection that drops `drop`: det[b - a; c - a] of the kept coordinates

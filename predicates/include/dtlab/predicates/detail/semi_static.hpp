@@ -70,7 +70,7 @@ inline int insphere_semi_static(const Point3& a, const Point3& b, const Point3& 
   const double high = m.largest();
   if (low == 0.0) return 0;
   if (low < 0x1p-105 || high > 0x1p105) return kFilterUndecided;
-  return semi_static_verdict(insphere_float(a, b, c, d, e).det,
+  return semi_static_verdict(insphere_det(a, b, c, d, e),
                              kStaticInsphere * (((m.x * m.y) * m.z) * (high * high)));
 }
 
