@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <tuple>
@@ -308,6 +309,45 @@ TEST(Stages, InsphereStopsInEachStage) {
   EXPECT_EQ(off.stage, Stage::B);
   EXPECT_EQ(off.sign, ExactKernel::insphere(o, x, y, z, near));
   EXPECT_EQ(off.sign, -1);
+}
+
+// The adaptive insphere's stage A tries the semi-static bound (Lemma 5) before the permanent's.
+// Random points spread unevenly over the axes: the same determinant either way, most calls
+// decided by the semi-static bound, every sign the exact one. Rows (relative to e) X e_x, X e_y,
+// X e_z and (1, 1, 1) with X = 2^50: the determinant is X^3 (3 - 3X), about -3 X^4, far above the
+// permanent's bound (15 eps times about 6 X^4) but below the semi-static one (1.2e-13 X^5):
+// decided by the permanent. A difference above 2^105 is outside the semi-static window.
+TEST(Stages, InsphereTriesTheSemiStaticBoundFirst) {
+  using predicates::detail::FilteredValue;
+  using predicates::detail::insphere_float_semi_static_first;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int by_semi_static = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double sx = std::ldexp(1.0, static_cast<int>(random() % 40));
+    const double sy = std::ldexp(1.0, static_cast<int>(random() % 40));
+    auto point = [&] { return Point3{sx * unit(random), sy * unit(random), unit(random)}; };
+    const Point3 a = point(), b = point(), c = point(), d = point(), e = point();
+    const FilteredValue f = insphere_float_semi_static_first(a, b, c, d, e);
+    EXPECT_EQ(f.det, predicates::detail::insphere_float(a, b, c, d, e).det);
+    if (std::fabs(f.det) > f.bound && f.permanent == 0.0) ++by_semi_static;
+    EXPECT_EQ(AdaptiveKernel::insphere(a, b, c, d, e), ExactKernel::insphere(a, b, c, d, e));
+  }
+  EXPECT_GT(by_semi_static, 10000);
+
+  const double x = 0x1p50;
+  const Point3 o{0, 0, 0}, ux{x, 0, 0}, uy{0, x, 0}, uz{0, 0, x}, ones{1, 1, 1};
+  const FilteredValue skewed = insphere_float_semi_static_first(ux, uy, uz, ones, o);
+  EXPECT_GT(skewed.permanent, 0.0);  // the semi-static bound did not decide
+  EXPECT_GT(std::fabs(skewed.det), skewed.bound);
+  const predicates::StagedSign s = AdaptiveKernel::insphere_staged(ux, uy, uz, ones, o);
+  EXPECT_EQ(s.stage, Stage::A);
+  EXPECT_EQ(s.sign, ExactKernel::insphere(ux, uy, uz, ones, o));
+
+  const Point3 far{0x1p106, 0, 0}, b{0, 1, 0}, c{0, 0, 1}, d{-1, -1, -1}, e{0.25, 0.25, 0.25};
+  const FilteredValue outside = insphere_float_semi_static_first(far, b, c, d, e);
+  EXPECT_GT(outside.permanent, 0.0);
+  EXPECT_EQ(AdaptiveKernel::insphere(far, b, c, d, e), ExactKernel::insphere(far, b, c, d, e));
 }
 
 // A coordinate outside the expansion range (here subnormal) with a tie that stage A cannot

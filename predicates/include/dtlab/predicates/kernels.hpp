@@ -111,10 +111,8 @@ struct AdaptiveKernel : SignsFromStages<AdaptiveKernel> {
   static StagedSign insphere_staged(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, const Point3& e) {
     // Stage A tries the semi-static bound first (Lemma 5: a constant times the axes' largest
-    // differences, a cruder bound than the permanent's and much cheaper), then the permanent's.
-    const int quick = detail::insphere_semi_static(a, b, c, d, e);
-    if (quick != detail::kFilterUndecided) return {quick, Stage::A};
-    const detail::FilteredValue f = detail::insphere_float(a, b, c, d, e);
+    // differences, usually looser than the permanent's and much cheaper), then the permanent's.
+    const detail::FilteredValue f = detail::insphere_float_semi_static_first(a, b, c, d, e);
     if (std::fabs(f.det) > f.bound) return {detail::sign_of(f.det), Stage::A};
     return insphere_beyond_a(a, b, c, d, e, f);
   }

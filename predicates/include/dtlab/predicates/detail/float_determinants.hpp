@@ -10,6 +10,7 @@
 // C from error_bounds.hpp for this evaluation order, the underflow term from Lemma 4. A
 // difference or product that overflows makes the bound infinite or NaN, so the comparison
 // |det| > bound fails and the call goes on to the exact stages.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -17,6 +18,18 @@
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::predicates::detail {
+
+// The semi-static filters' constants (Lemma 5 in docs/predicates.md; semi_static.hpp). Inside a
+// window the underflow errors are below 2^-60 of the bound, so this relative margin covers them.
+constexpr double with_underflow_margin(double k) {
+  return k * (1.0 + 0x1p-20);
+}
+inline constexpr double kStaticOrient3d = with_underflow_margin(bounds::kStaticOrient3d);
+inline constexpr double kStaticInsphere = with_underflow_margin(bounds::kStaticInsphere);
+inline constexpr double kStaticOrient2d = with_underflow_margin(bounds::kStaticOrient2d);
+inline constexpr double kStaticIncircleLifted =
+    with_underflow_margin(bounds::kStaticIncircleLifted);
+inline constexpr double kStaticCentroid = with_underflow_margin(bounds::kStaticCentroid);
 
 struct FilteredValue {
   double det;        // the determinant in floating point, dtlab's sign
@@ -65,9 +78,13 @@ inline FilteredValue orient3d_float(const Point3& a, const Point3& b, const Poin
 //   det4 = (m01 n23 + m23 n01) - (m02 n13 + m13 n02) + (m03 n12 + m12 n03),
 // and dtlab's insphere is the sign of -det4, evaluated as
 //   (m02 n13 + m13 n02) - ((m01 n23 + m23 n01) + (m03 n12 + m12 n03)).
-// kWithBound = false computes the determinant alone (the permanent is most of the rest of the
-// work), for the semi-static filter: the same operations, so the same rounded value.
-template <bool kWithBound>
+// The bound computed with the determinant: none (the semi-static filter computes its own), the
+// permanent's (stage A), or the semi-static one first and the permanent's only when that one does
+// not decide (the permanent is most of the work after the determinant). The same operations give
+// the determinant in every mode, so the same rounded value.
+enum class InsphereBound { kNone, kPermanent, kSemiStaticFirst };
+
+template <InsphereBound kBound>
 inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const Point3& c,
                                        const Point3& d, const Point3& e) {
   const double x0 = a.x - e.x, y0 = a.y - e.y, z0 = a.z - e.z;
@@ -91,9 +108,22 @@ inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const P
   const double n01 = z0l1 - z1l0, n02 = z0l2 - z2l0, n03 = z0l3 - z3l0;
   const double n12 = z1l2 - z2l1, n13 = z1l3 - z3l1, n23 = z2l3 - z3l2;
   const double det = (m02 * n13 + m13 * n02) - ((m01 * n23 + m23 * n01) + (m03 * n12 + m12 * n03));
-  if constexpr (!kWithBound) return {det, 0.0, 0.0, 0.0};
-
   using std::fabs;
+  if constexpr (kBound == InsphereBound::kNone) return {det, 0.0, 0.0, 0.0};
+  if constexpr (kBound == InsphereBound::kSemiStaticFirst) {
+    // Lemma 5 on the same differences (semi_static.hpp's insphere_semi_static, its window too).
+    using std::max;
+    const double mx = max(max(fabs(x0), fabs(x1)), max(fabs(x2), fabs(x3)));
+    const double my = max(max(fabs(y0), fabs(y1)), max(fabs(y2), fabs(y3)));
+    const double mz = max(max(fabs(z0), fabs(z1)), max(fabs(z2), fabs(z3)));
+    const double low = std::min(mx, std::min(my, mz));
+    const double high = max(mx, max(my, mz));
+    if (low >= 0x1p-105 && high <= 0x1p105) {
+      const double bound = kStaticInsphere * (((mx * my) * mz) * (high * high));
+      if (fabs(det) > bound) return {det, bound, 0.0, 0.0};  // decided: no permanent needed
+    }
+  }
+
   const double pm01 = fabs(x0y1) + fabs(x1y0), pm02 = fabs(x0y2) + fabs(x2y0);
   const double pm03 = fabs(x0y3) + fabs(x3y0), pm12 = fabs(x1y2) + fabs(x2y1);
   const double pm13 = fabs(x1y3) + fabs(x3y1), pm23 = fabs(x2y3) + fabs(x3y2);
@@ -111,13 +141,21 @@ inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const P
 
 inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, const Point3& e) {
-  return insphere_evaluate<true>(a, b, c, d, e);
+  return insphere_evaluate<InsphereBound::kPermanent>(a, b, c, d, e);
 }
 
 // insphere_float's determinant alone.
 inline double insphere_det(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                            const Point3& e) {
-  return insphere_evaluate<false>(a, b, c, d, e).det;
+  return insphere_evaluate<InsphereBound::kNone>(a, b, c, d, e).det;
+}
+
+// insphere_float, whose bound is the semi-static one where that decides (|det| > bound; then
+// permanent and underflow are not computed), else the permanent's.
+inline FilteredValue insphere_float_semi_static_first(const Point3& a, const Point3& b,
+                                                      const Point3& c, const Point3& d,
+                                                      const Point3& e) {
+  return insphere_evaluate<InsphereBound::kSemiStaticFirst>(a, b, c, d, e);
 }
 
 // orient2d in the projection that drops `drop`: det[b - a; c - a] of the kept coordinates

@@ -13,17 +13,8 @@
 
 namespace dtlab::predicates::detail {
 
-// Inside a window the underflow errors are below 2^-60 of the bound (docs/predicates.md), so this
-// relative margin covers them.
-constexpr double with_underflow_margin(double k) {
-  return k * (1.0 + 0x1p-20);
-}
-inline constexpr double kStaticOrient3d = with_underflow_margin(bounds::kStaticOrient3d);
-inline constexpr double kStaticInsphere = with_underflow_margin(bounds::kStaticInsphere);
-inline constexpr double kStaticOrient2d = with_underflow_margin(bounds::kStaticOrient2d);
-inline constexpr double kStaticIncircleLifted =
-    with_underflow_margin(bounds::kStaticIncircleLifted);
-inline constexpr double kStaticCentroid = with_underflow_margin(bounds::kStaticCentroid);
+// The constants with their underflow margin (kStaticOrient3d, ...) are in float_determinants.hpp,
+// where the adaptive kernel's insphere uses one too.
 
 // The filter's verdict: a sign, or kUndecided.
 inline constexpr int kFilterUndecided = 2;
