@@ -213,7 +213,12 @@ int run_triangulate(const TriangulateArgs& args) {
                      static_cast<unsigned long long>(c.non_delaunay_after));
       }
     }
-    if (s.splay.done) {
+    if (s.splay.done && s.splay.proven_by_post_check) {
+      std::printf(
+          "  repair (star splaying): nothing to do; the post-check's exact validation proved the "
+          "mesh the unique (perturbed) Delaunay tetrahedralization in %.3f s\n",
+          s.post_check.seconds_check);
+    } else if (s.splay.done) {
       const engine::SplayStats& r = s.splay;
       std::printf(
           "  repair (star splaying): %llu non-Delaunay faces, %llu bad tetrahedra and %llu "

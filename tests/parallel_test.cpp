@@ -290,6 +290,7 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   std::uint64_t repair_flips = 0;  // and the flips they made
   int stuck = 0;                   // grid runs whose flips got stuck
   int left_at_ties = 0;            // runs whose flips left a Delaunay mesh, not the unique one
+  int proven = 0;                  // splay runs whose post-check proved the mesh unique already
   auto run = [&](const std::string& family, const std::vector<Point3>& points,
                  const std::vector<engine::Tetrahedron>& expected, int threads,
                  engine::Repair repair, std::uint64_t seed) {
@@ -329,6 +330,10 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
           const auto splayed = engine::repair(points, result.tetrahedra, scan);
           EXPECT_EQ(engine::canonical_tetrahedra(splayed), expected) << what;
           EXPECT_EQ(scan.bad_tetrahedra, 0u) << what;
+          // The validator's own verdict on uniqueness (ties judged by the perturbation) agrees
+          // with star splaying's perturbed scan.
+          EXPECT_EQ(report.is_perturbed_delaunay(), scan.non_delaunay_faces == 0)
+              << what << report.json();
           if (scan.non_delaunay_faces == 0) {
             EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
             if (grid) {
@@ -349,7 +354,15 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
         EXPECT_TRUE(result.stats.splay.done) << what;
         EXPECT_FALSE(check.rebuilt) << what;
         EXPECT_TRUE(report.valid()) << what << report.json();
+        EXPECT_TRUE(report.is_perturbed_delaunay()) << what << report.json();
         EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+        // Taken only where the post-check's validation found nothing against the perturbation.
+        if (result.stats.splay.proven_by_post_check) {
+          ++proven;
+          EXPECT_EQ(check.non_delaunay_faces, 0u) << what;
+          EXPECT_EQ(check.reflex_boundary_edges, 0u) << what;
+          EXPECT_EQ(result.stats.splay.stars, 0u) << what;
+        }
         break;
       case engine::Repair::Rebuild:
         EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
@@ -387,6 +400,29 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   EXPECT_GT(repair_flips, 0u);
   std::printf("burglary, grid: %d runs whose flips got stuck\n", stuck);
   std::printf("burglary: %d runs whose flips stopped at ties\n", left_at_ties);
+  std::printf("burglary: %d splay runs proven by the post-check\n", proven);
+}
+
+// With cavities and an exact kernel burglary leaves no damage (docs/design.md), so --repair's
+// post-check validation proves every mesh the unique perturbed Delaunay tetrahedralization, ties
+// (cospherical points, grid faces, flat hull facets) judged by the perturbation, and star
+// splaying has nothing to scan or splay: the result is the unique mesh all the same.
+TEST(ParallelMethods, CavityBurglaryRepairIsProvenByThePostCheck) {
+  for (const std::string family : {"uniform", "grid", "sphere", "cospherical", "duplicates"}) {
+    const auto points = generators::generate(family, 2000, 6).points;
+    const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
+    engine::TriangulateOptions options;
+    options.method = Method::Burglary;
+    options.location = engine::Location::Walk;
+    options.insertion = engine::Insertion::Cavity;
+    options.threads = 2;
+    options.repair = engine::Repair::Splay;
+    const auto result = engine::triangulate(points, options);
+    EXPECT_TRUE(result.stats.splay.proven_by_post_check) << family;
+    EXPECT_EQ(result.stats.splay.seconds, 0.0) << family;
+    EXPECT_EQ(result.stats.post_check.non_delaunay_faces, 0u) << family;
+    EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << family;
+  }
 }
 
 // The fast kernel contradicts itself on inexact near-degenerate input. Its insertions whose

@@ -21,6 +21,7 @@
 
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
+#include "dtlab/predicates/kernels.hpp"
 #include "dtlab/predicates/point.hpp"
 
 namespace dtlab::test {
@@ -383,6 +384,52 @@ TEST(ValidatorCounter, ReflexBoundaryVerticesWithEqualVolumes) {
     // The probe points near the axis see the double cover that the volume cannot.
     EXPECT_GT(r.probes_covered_twice, 0u) << r.kernel;
     EXPECT_FALSE(r.mesh_consistent()) << r.kernel;
+  }
+}
+
+// A square pyramid: the base's four points are cocircular, so every sphere through three of
+// them and the apex holds the fourth. Both of its tetrahedralizations (the base split along
+// either diagonal) are Delaunay, each with one tied interior face and one flat boundary edge (the
+// diagonal); only the engine's is the perturbation's, and is_perturbed_delaunay() tells them
+// apart. With both kernels.
+TEST(ValidatorTies, OnlyThePerturbationsTetrahedralizationIsPerturbedDelaunay) {
+  const std::vector<Point3> points{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, 3}};
+  const std::vector<Tetrahedron> engine_mesh = engine::triangulate(points, {}).tetrahedra;
+  ASSERT_EQ(engine_mesh.size(), 2u);
+  // The other diagonal: the engine's split uses one of (0, 2) and (1, 3).
+  bool split_02 = false;
+  for (const Tetrahedron& t : engine_mesh) {
+    split_02 =
+        split_02 ||
+        (std::count(t.begin(), t.end(), 0u) == 1 && std::count(t.begin(), t.end(), 2u) == 1 &&
+         std::count(t.begin(), t.end(), 4u) == 1 &&
+         std::count(t.begin(), t.end(), 1u) + std::count(t.begin(), t.end(), 3u) == 1);
+  }
+  std::vector<Tetrahedron> other = split_02 ? std::vector<Tetrahedron>{{0, 1, 3, 4}, {1, 2, 3, 4}}
+                                            : std::vector<Tetrahedron>{{0, 1, 2, 4}, {0, 2, 3, 4}};
+  for (Tetrahedron& t : other) {
+    if (predicates::ExactKernel::orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) <
+        0) {
+      std::swap(t[0], t[1]);
+    }
+  }
+  for (const ValidateWith kernel : kKernels) {
+    const ValidationReport mine = engine::validate(points, engine_mesh, kernel);
+    EXPECT_TRUE(mine.valid()) << mine.json();
+    EXPECT_EQ(mine.tied_faces, 1u) << mine.json();
+    EXPECT_EQ(mine.flat_boundary_edges, 1u) << mine.json();
+    EXPECT_EQ(mine.tied_faces_against_perturbation, 0u) << mine.json();
+    EXPECT_EQ(mine.flat_boundary_edges_against_perturbation, 0u) << mine.json();
+    EXPECT_TRUE(mine.is_perturbed_delaunay()) << mine.json();
+
+    const ValidationReport theirs = engine::validate(points, other, kernel);
+    EXPECT_TRUE(theirs.valid()) << theirs.json();
+    EXPECT_EQ(theirs.tied_faces, 1u) << theirs.json();
+    EXPECT_EQ(theirs.flat_boundary_edges, 1u) << theirs.json();
+    // The perturbed lifting picks the engine's diagonal in both places.
+    EXPECT_EQ(theirs.tied_faces_against_perturbation, 1u) << theirs.json();
+    EXPECT_EQ(theirs.flat_boundary_edges_against_perturbation, 1u) << theirs.json();
+    EXPECT_FALSE(theirs.is_perturbed_delaunay()) << theirs.json();
   }
 }
 

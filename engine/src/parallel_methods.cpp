@@ -194,9 +194,10 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   // method (docs/experiments.md), so only the vertex at infinity counts them as burglary's.
   const bool hull_counts = options.bounding == Bounding::Infinite;
   // Validates `tets`, records the verdict as the latest stage's, returns the violations left.
+  ValidationReport report;  // the latest stage's
   auto count = [&](const std::vector<Tetrahedron>& tets) {
     const auto t0 = Clock::now();
-    const ValidationReport report = validate(input, tets, ValidateWith::Adaptive, kAllThreads);
+    report = validate(input, tets, ValidateWith::Adaptive, kAllThreads);
     check.seconds_check += std::chrono::duration<double>(Clock::now() - t0).count();
     check.non_delaunay_faces_after = report.non_delaunay_faces;
     check.reflex_boundary_edges_after = report.reflex_boundary_edges;
@@ -219,12 +220,23 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   const auto t0 = Clock::now();
   const double check_before = check.seconds_check;
   if (options.repair == Repair::Splay) {
+    // The validation above already proved the mesh the unique perturbed Delaunay
+    // tetrahedralization (ValidationReport::is_perturbed_delaunay): what star splaying would
+    // return unchanged, so its own scan is skipped (the marks, if any, changed nothing that
+    // shows) and the verdict after is that one.
+    if (report.is_perturbed_delaunay()) {
+      stats.splay.done = true;
+      stats.splay.proven_by_post_check = true;
+      return tets;
+    }
     // Star splaying from the marks and every non-Delaunay face: always ends Delaunay.
     splay_shared_mesh(mesh, marks, options.kernel != KernelKind::Fast, options.threads,
                       stats.splay);
+    check.seconds_repair = stats.splay.seconds;
+    // Nothing written back: the mesh and so its verdict are the ones validated above.
+    if (stats.splay.tetrahedra_removed == 0 && stats.splay.tetrahedra_created == 0) return tets;
     tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates, options.threads);
     count(tets);
-    check.seconds_repair = stats.splay.seconds;
     return tets;
   }
   TriangulationStats repair_stats;

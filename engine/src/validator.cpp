@@ -13,6 +13,7 @@
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/tet_mesh.hpp"
 #include "dtlab/predicates/kernels.hpp"
+#include "dtlab/predicates/perturbation.hpp"
 #include "exact_volume.hpp"
 #include "parallel_ranges.hpp"
 #include "probe_coverage.hpp"
@@ -173,7 +174,9 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
   // Every interior face locally Delaunay, tested from its lower tetrahedron in the list's order,
   // where one tetrahedron's points are mostly the last one's, rather than in the buckets' order.
   r.non_delaunay_flags.assign(tets.size(), 0);
-  std::vector<std::uint64_t> non_delaunay(static_cast<std::size_t>(parts), 0);
+  // Per part: non-Delaunay faces, tied faces, tied faces decided against the perturbation.
+  std::vector<std::array<std::uint64_t, 3>> delaunay_counts(static_cast<std::size_t>(parts),
+                                                            {0, 0, 0});
   in_parallel_ranges(tets.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     // A neighbour's record and its apex point can lie anywhere in the list and the point array:
     // requested a few tetrahedra ahead, so that the misses overlap (at 1M uniform points, 2
@@ -198,8 +201,17 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
         if (other == kNoFace) continue;
         const Tetrahedron& t = tets[i];
         const std::uint32_t opposite = tets[other / 4][other % 4];
-        if (K::insphere(pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]], pts[opposite]) > 0) {
-          ++non_delaunay[part];
+        auto& [non_delaunay, tied, tied_against] = delaunay_counts[part];
+        const int side = K::insphere(pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]], pts[opposite]);
+        if (side == 0) {
+          ++tied;
+          if (positive[i] != 0 && predicates::insphere_perturbed<K>(pts[t[0]], pts[t[1]], pts[t[2]],
+                                                                    pts[t[3]], pts[opposite]) > 0) {
+            ++tied_against;
+          }
+        }
+        if (side > 0) {
+          ++non_delaunay;
           // Two threads may flag one tetrahedron (its neighbours lie in both ranges).
           std::atomic_ref<std::int32_t>(r.non_delaunay_flags[i])
               .store(1, std::memory_order_relaxed);
@@ -209,8 +221,11 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
       }
     }
   });
-  r.non_delaunay_faces =
-      std::accumulate(non_delaunay.begin(), non_delaunay.end(), std::uint64_t{0});
+  for (const auto& [non_delaunay, tied, tied_against] : delaunay_counts) {
+    r.non_delaunay_faces += non_delaunay;
+    r.tied_faces += tied;
+    r.tied_faces_against_perturbation += tied_against;
+  }
   across = {};
   std::vector<std::array<std::uint32_t, 3>> boundary;  // outward-oriented boundary faces
   std::vector<SignedFace> unbalanced;
@@ -258,7 +273,17 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
       // Outward triples have the interior on their negative side... of the tetrahedron's
       // orientation: orient3d(triple, interior vertex) < 0, so a convex boundary keeps every
       // other boundary vertex at orient3d <= 0.
-      if (K::orient3d(pts[f1[0]], pts[f1[1]], pts[f1[2]], pts[apex]) > 0) {
+      const int side = K::orient3d(pts[f1[0]], pts[f1[1]], pts[f1[2]], pts[apex]);
+      // A flat edge: the apex against the vertex at infinity over f1 (beyond f1, on the outward
+      // triple's positive side), as the engine's infinite tetrahedra test it.
+      if (side == 0) {
+        ++r.flat_boundary_edges;
+        if (predicates::infinite_insphere_perturbed<K>(pts[f1[0]], pts[f1[1]], pts[f1[2]],
+                                                       pts[apex]) > 0) {
+          ++r.flat_boundary_edges_against_perturbation;
+        }
+      }
+      if (side > 0) {
         ++r.reflex_boundary_edges;
         near_reflex[edges[i].key[0]] = near_reflex[edges[i].key[1]] = 1;
       }
@@ -407,6 +432,11 @@ bool ValidationReport::valid() const {
   return consistent() && non_delaunay_faces == 0;
 }
 
+bool ValidationReport::is_perturbed_delaunay() const {
+  return valid() && tied_faces_against_perturbation == 0 &&
+         flat_boundary_edges_against_perturbation == 0;
+}
+
 std::string ValidationReport::json() const {
   nlohmann::ordered_json j;
   j["valid"] = valid();
@@ -427,6 +457,11 @@ std::string ValidationReport::json() const {
   j["missing_points"] = missing_points;
   j["repeated_duplicates"] = repeated_duplicates;
   j["euler_characteristic"] = euler_characteristic;
+  j["tied_faces"] = tied_faces;
+  j["tied_faces_against_perturbation"] = tied_faces_against_perturbation;
+  j["flat_boundary_edges"] = flat_boundary_edges;
+  j["flat_boundary_edges_against_perturbation"] = flat_boundary_edges_against_perturbation;
+  j["perturbed_delaunay"] = is_perturbed_delaunay();
   j["volume_mismatch"] = volume_mismatch;
   j["volume_excess"] = volume_excess;
   j["probe_points"] = probe_points;

@@ -159,6 +159,10 @@ struct SplayStats {
   std::uint64_t seeds = 0;               // vertices splayed from the start
   std::uint64_t live_marks = 0;          // burglary's marks that are still live tetrahedra
   bool marks_seeded = false;  // their vertices were seeds (not when the scan proved the mesh)
+  // Burglary's post-check: its validation, before the repair, proved the mesh the unique
+  // perturbed Delaunay tetrahedralization (ValidationReport::is_perturbed_delaunay), so nothing
+  // was scanned or splayed (seconds 0; the proof's time is post_check.seconds_check).
+  bool proven_by_post_check = false;
   bool stars_walked = false;  // the mesh's stars found by walks, not from incidence lists
   std::uint64_t stars = 0;    // stars built: the seeds and the vertices they reached
   std::uint64_t offers = 0;   // vertices offered to stars

@@ -31,6 +31,17 @@ struct ValidationReport {
   std::uint64_t missing_points = 0;            // distinct input point that is no vertex
   std::uint64_t repeated_duplicates = 0;       // duplicate set used as a vertex more than once
   std::int64_t euler_characteristic = 0;       // V - E + F - T; 1 for a triangulated ball
+  // Ties, no violation (a Delaunay mesh of cospherical or coplanar points may have them), but
+  // what decides whether it is the unique tetrahedralization of the engine's perturbation
+  // (predicates/perturbation.hpp):
+  std::uint64_t tied_faces = 0;  // interior: the opposite vertex exactly on the circumsphere
+  // Of those, the ones the perturbation decides against (the perturbed test puts the opposite
+  // vertex inside); counted where the face's first tetrahedron is positively oriented.
+  std::uint64_t tied_faces_against_perturbation = 0;
+  std::uint64_t flat_boundary_edges = 0;  // boundary edge between two coplanar boundary faces
+  // Of those, the ones where the perturbation puts the second face's apex in conflict with the
+  // vertex at infinity over the first (the engine's infinite tetrahedra would be flipped there).
+  std::uint64_t flat_boundary_edges_against_perturbation = 0;
   // Global check: the exact sum of the tetrahedra's signed volumes against the exact volume of
   // the convex hull of the input points, computed independently of the mesh (CGAL's hull). Equal
   // volumes pin the number of times consistent tetrahedra cover the hull to one.
@@ -54,6 +65,11 @@ struct ValidationReport {
   // non-Delaunay face of an infinite tetrahedron (burglary can leave one; docs/design.md).
   [[nodiscard]] bool mesh_consistent() const;
   [[nodiscard]] bool valid() const;  // consistent and Delaunay
+  // Valid, and no tie (interior face or flat boundary edge) decided against the perturbation:
+  // then every face, the infinite tetrahedra's included, is strictly locally Delaunay under the
+  // perturbation, which makes the mesh the unique perturbed Delaunay tetrahedralization (the one
+  // dtlab's engine and star splaying build; docs/design.md, "The validator").
+  [[nodiscard]] bool is_perturbed_delaunay() const;
   [[nodiscard]] std::string json() const;
 };
 
