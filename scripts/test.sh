@@ -77,8 +77,8 @@ if [ "${DTLAB_SKIP_ASAN:-0}" != "1" ]; then
   run_suite asan "" "" "-DDTLAB_RC_PARAMS=seed=20261121 max_success=100"
 fi
 if [ "${DTLAB_SKIP_TSAN:-0}" != "1" ]; then
-  run_suite tsan "parallel_test replay_parallel validator_threads_test" \
-    "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\."
+  run_suite tsan "parallel_test replay_parallel validator_threads_test parallel_ranges_test" \
+    "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel"
 fi
 if [ "${DTLAB_SKIP_FUZZ:-0}" != "1" ]; then
   # Each libFuzzer harness for a bounded time from its corpus (DTLAB_FUZZ_SECONDS, default 45).

@@ -344,6 +344,26 @@ TEST(Stages, InsphereTriesTheSemiStaticBoundFirst) {
   EXPECT_EQ(s.stage, Stage::A);
   EXPECT_EQ(s.sign, ExactKernel::insphere(ux, uy, uz, ones, o));
 
+  // A well-conditioned configuration outside the semi-static bound's window (differences of
+  // 2^110 and of 2^-110; the window is [2^-105, 2^105]): the window alone sends it to the
+  // permanent's bound, which decides it in stage A.
+  for (const double scale : {0x1p110, 0x1p-110}) {
+    const Point3 p{scale, scale, scale}, q{scale, -scale, -scale}, r{-scale, scale, -scale},
+        t{-scale, -scale, scale}, inside{0.25 * scale, 0.5 * scale, 0.125 * scale};
+    const FilteredValue windowed = insphere_float_semi_static_first(p, q, r, t, inside);
+    EXPECT_GT(windowed.permanent, 0.0) << scale;
+    EXPECT_GT(std::fabs(windowed.det), windowed.bound) << scale;
+    const predicates::StagedSign w = AdaptiveKernel::insphere_staged(p, q, r, t, inside);
+    EXPECT_EQ(w.stage, Stage::A) << scale;
+    EXPECT_NE(w.sign, 0) << scale;
+    EXPECT_EQ(w.sign, ExactKernel::insphere(p, q, r, t, inside)) << scale;
+  }
+  // Inside the window the same shape is decided by the semi-static bound alone.
+  const FilteredValue unscaled = insphere_float_semi_static_first(
+      {1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}, {0.25, 0.5, 0.125});
+  EXPECT_EQ(unscaled.permanent, 0.0);
+  EXPECT_GT(std::fabs(unscaled.det), unscaled.bound);
+
   const Point3 far{0x1p106, 0, 0}, b{0, 1, 0}, c{0, 0, 1}, d{-1, -1, -1}, e{0.25, 0.25, 0.25};
   const FilteredValue outside = insphere_float_semi_static_first(far, b, c, d, e);
   EXPECT_GT(outside.permanent, 0.0);

@@ -60,6 +60,9 @@ print(json.dumps({
     "seconds_scan": splay.get("seconds_scan"),
     "non_delaunay_faces_found": splay.get("non_delaunay_faces"),
     "stars": splay.get("stars"),
+    # True where the post-check's validation already proved the mesh the unique one: no scan.
+    "proven_by_post_check": splay.get("proven_by_post_check"),
+    "seconds_check": check.get("seconds_check"),
     "non_delaunay_faces_after": check.get("non_delaunay_faces_after"),
     "reflex_boundary_edges_after": check.get("reflex_boundary_edges_after"),
     "mesh_consistent_after": check.get("mesh_consistent_after"),

@@ -223,8 +223,11 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
     // The validation above already proved the mesh the unique perturbed Delaunay
     // tetrahedralization (ValidationReport::is_perturbed_delaunay): what star splaying would
     // return unchanged, so its own scan is skipped (the marks, if any, changed nothing that
-    // shows) and the verdict after is that one.
-    if (report.is_perturbed_delaunay()) {
+    // shows) and the verdict after is that one. Only with the vertex at infinity: with the
+    // auxiliary tetrahedron star splaying works on the input and the four auxiliary vertices,
+    // whose Delaunay tetrahedralization can lose hull tetrahedra that the input's has, so a proof
+    // about the finite tetrahedra says nothing about what it would return.
+    if (hull_counts && report.is_perturbed_delaunay()) {
       stats.splay.done = true;
       stats.splay.proven_by_post_check = true;
       return tets;

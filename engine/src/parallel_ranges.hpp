@@ -3,6 +3,7 @@
 // (the insertion order, the output, the repair's scan): each thread one contiguous range.
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -14,7 +15,9 @@ inline constexpr std::size_t kParallelMinimum = 4096;
 
 // Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges (at most n), one
 // thread each (the caller's thread takes the last); with parts <= 1, or n below `minimum`, it
-// runs inline as part 0 alone. `work` must not throw (a thread's exception would terminate).
+// runs inline as part 0 alone. An exception from a part (std::bad_alloc on a large mesh) is held
+// until every part has ended, then the lowest part's is rethrown on the caller's thread: an
+// exception escaping a std::thread would terminate the process.
 template <class Work>
 void in_parallel_ranges(std::size_t n, int parts, Work work,
                         std::size_t minimum = kParallelMinimum) {
@@ -24,13 +27,24 @@ void in_parallel_ranges(std::size_t n, int parts, Work work,
     work(std::size_t{0}, n, std::size_t{0});
     return;
   }
+  std::vector<std::exception_ptr> failed(count);
+  auto guarded = [&work, &failed](std::size_t begin, std::size_t end, std::size_t part) {
+    try {
+      work(begin, end, part);
+    } catch (...) {
+      failed[part] = std::current_exception();
+    }
+  };
   std::vector<std::thread> helpers;
   helpers.reserve(count - 1);
   for (std::size_t part = 0; part + 1 < count; ++part) {
-    helpers.emplace_back(work, n * part / count, n * (part + 1) / count, part);
+    helpers.emplace_back(guarded, n * part / count, n * (part + 1) / count, part);
   }
-  work(n * (count - 1) / count, n, count - 1);
+  guarded(n * (count - 1) / count, n, count - 1);
   for (std::thread& h : helpers) h.join();
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
 }
 
 }  // namespace dtlab::engine

@@ -132,44 +132,41 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
                                    permutation_parity(triple)});
           }
         });
-    in_parallel_ranges(
-        faces.buckets(), faces.items_count() < kParallelMinimum ? 1 : parts,
-        [&](std::size_t begin, std::size_t end, std::size_t part) {
-          FaceFindings& mine = found[part];
-          FaceEntry* const items = faces.items.get();
-          std::vector<FaceEntry> scratch;
-          std::vector<std::size_t> counts;
-          for (std::size_t bucket = begin; bucket < end; ++bucket) {
-            FaceEntry* const first = items + faces.first[bucket];
-            FaceEntry* const last = items + faces.first[bucket + 1];
-            sort_bucket(
-                first, last, bucket << faces.shift, faces.shift,
-                [](const FaceEntry& e) { return e.key[0]; }, face_order, scratch, counts);
-            for (FaceEntry* i = first; i != last;) {
-              FaceEntry* j = i;
-              std::int32_t multiplicity = 0;
-              while (j != last && j->key == i->key) {
-                multiplicity += j->parity == 0 ? 1 : -1;
-                ++j;
-              }
-              ++mine.distinct_faces;
-              if (multiplicity != 0) mine.unbalanced.push_back({i->key, multiplicity});
-              const auto count = static_cast<std::size_t>(j - i);
-              if (count == 1) {
-                ++mine.boundary_faces;
-                mine.boundary.push_back(oriented_face(tets[i->tet], i->face));
-              } else if (count == 2) {
-                ++mine.interior_faces;
-                if (i[0].parity == i[1].parity) ++mine.inconsistent_faces;
-                across[4 * std::size_t{i[0].tet} + i[0].face] = 4 * i[1].tet + i[1].face;
-              } else {
-                ++mine.non_manifold_faces;
-              }
-              i = j;
-            }
+    in_parallel_buckets(faces, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
+      FaceFindings& mine = found[part];
+      FaceEntry* const items = faces.items.get();
+      std::vector<FaceEntry> scratch;
+      std::vector<std::size_t> counts;
+      for (std::size_t bucket = begin; bucket < end; ++bucket) {
+        FaceEntry* const first = items + faces.first[bucket];
+        FaceEntry* const last = items + faces.first[bucket + 1];
+        sort_bucket(
+            first, last, bucket << faces.shift, faces.shift,
+            [](const FaceEntry& e) { return e.key[0]; }, face_order, scratch, counts);
+        for (FaceEntry* i = first; i != last;) {
+          FaceEntry* j = i;
+          std::int32_t multiplicity = 0;
+          while (j != last && j->key == i->key) {
+            multiplicity += j->parity == 0 ? 1 : -1;
+            ++j;
           }
-        },
-        /*minimum=*/1);
+          ++mine.distinct_faces;
+          if (multiplicity != 0) mine.unbalanced.push_back({i->key, multiplicity});
+          const auto count = static_cast<std::size_t>(j - i);
+          if (count == 1) {
+            ++mine.boundary_faces;
+            mine.boundary.push_back(oriented_face(tets[i->tet], i->face));
+          } else if (count == 2) {
+            ++mine.interior_faces;
+            if (i[0].parity == i[1].parity) ++mine.inconsistent_faces;
+            across[4 * std::size_t{i[0].tet} + i[0].face] = 4 * i[1].tet + i[1].face;
+          } else {
+            ++mine.non_manifold_faces;
+          }
+          i = j;
+        }
+      }
+    });
   }
   // Every interior face locally Delaunay, tested from its lower tetrahedron in the list's order,
   // where one tetrahedron's points are mostly the last one's, rather than in the buckets' order.
@@ -365,22 +362,19 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
             }
           }
         });
-    in_parallel_ranges(
-        edges.buckets(), edges.items_count() < kParallelMinimum ? 1 : parts,
-        [&](std::size_t begin, std::size_t end, std::size_t part) {
-          std::uint64_t* const items = edges.items.get();
-          std::vector<std::uint64_t> scratch;
-          std::vector<std::size_t> counts;
-          for (std::size_t bucket = begin; bucket < end; ++bucket) {
-            std::uint64_t* const first = items + edges.first[bucket];
-            std::uint64_t* const last = items + edges.first[bucket + 1];
-            sort_bucket(
-                first, last, bucket << edges.shift, edges.shift,
-                [](std::uint64_t e) { return e >> 32; }, std::less<>(), scratch, counts);
-            edge_counts[part] += std::unique(first, last) - first;
-          }
-        },
-        /*minimum=*/1);
+    in_parallel_buckets(edges, parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
+      std::uint64_t* const items = edges.items.get();
+      std::vector<std::uint64_t> scratch;
+      std::vector<std::size_t> counts;
+      for (std::size_t bucket = begin; bucket < end; ++bucket) {
+        std::uint64_t* const first = items + edges.first[bucket];
+        std::uint64_t* const last = items + edges.first[bucket + 1];
+        sort_bucket(
+            first, last, bucket << edges.shift, edges.shift,
+            [](std::uint64_t e) { return e >> 32; }, std::less<>(), scratch, counts);
+        edge_counts[part] += std::unique(first, last) - first;
+      }
+    });
   }
   const std::int64_t edge_count =
       std::accumulate(edge_counts.begin(), edge_counts.end(), std::int64_t{0});

@@ -73,6 +73,32 @@ VertexBuckets<Item> bucket_by_vertex(std::size_t vertices, std::size_t sources, 
   return grouped;
 }
 
+// Runs work(first_bucket, end_bucket, part) over the buckets cut into `parts` contiguous ranges of
+// about equal item counts, one thread each (one range, inline, below kParallelMinimum items). Not
+// equal bucket counts: grouped by their lowest vertex, a mesh's faces and edges crowd the low ids
+// when ids are random (the input's order), so the first half of the buckets holds about 7/8 of
+// the faces. The ranges are in bucket order, so what the parts find, joined in part order, does not
+// depend on `parts`.
+template <class Item, class Work>
+void in_parallel_buckets(const VertexBuckets<Item>& grouped, int parts, Work work) {
+  const std::size_t total = grouped.items_count();
+  const std::size_t count =
+      total < kParallelMinimum ? 1 : static_cast<std::size_t>(std::max(parts, 1));
+  std::vector<std::size_t> cut(count + 1, 0);
+  cut[count] = grouped.buckets();
+  for (std::size_t p = 1; p < count; ++p) {
+    const std::size_t target = total * p / count;
+    const auto at = std::lower_bound(grouped.first.begin(), grouped.first.end() - 1, target);
+    cut[p] = std::max(cut[p - 1], static_cast<std::size_t>(at - grouped.first.begin()));
+  }
+  in_parallel_ranges(
+      count, static_cast<int>(count),
+      [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t p = begin; p < end; ++p) work(cut[p], cut[p + 1], p);
+      },
+      /*minimum=*/1);
+}
+
 // Sorts one bucket (vertices base .. base + 2^shift - 1) by vertex, then by `less` among the items
 // of one vertex: a counting sort by vertex into `scratch` and back, then std::sort on each vertex's
 // items (a few dozen on a mesh's faces and edges), which is about half the time of std::sort on the
