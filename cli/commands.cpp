@@ -289,6 +289,7 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
   j["stars"] = stats.stars;
   j["offers"] = stats.offers;
   j["changes"] = stats.changes;
+  j["bridges"] = stats.bridges;
   j["seconds"] = stats.seconds;
   if (report) j["validation_valid"] = report->valid();
   if (stats_path == "-") {
@@ -301,9 +302,11 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
     }
     std::printf(
         "repaired %zu tetrahedra on %zu points into the Delaunay tetrahedralization: %zu "
-        "tetrahedra; %llu stars splayed, %llu points no tetrahedron used, %.3f s\n",
+        "tetrahedra; %llu stars splayed, %llu points no tetrahedron used, %llu pieces of "
+        "agreeing stars bridged, %.3f s\n",
         tets.size(), points.size(), repaired.size(), static_cast<unsigned long long>(stats.stars),
-        static_cast<unsigned long long>(stats.missing_vertices), stats.seconds);
+        static_cast<unsigned long long>(stats.missing_vertices),
+        static_cast<unsigned long long>(stats.bridges), stats.seconds);
     if (report) {
       std::printf("  validation (adaptive predicates): %s\n",
                   report->valid() ? "VALID" : "INVALID");

@@ -93,6 +93,60 @@ TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
   }
 }
 
+// Stars that agree can fall apart into pieces: lone tetrahedra whose vertices meet no other
+// input tetrahedron keep their stars to themselves, each piece the Delaunay mesh of its own
+// vertices (a fuzzer found one: 4 points of 100 in a piece, 497 tetrahedra instead of 523). Each
+// piece is bridged by its closest pair to the rest until one piece holds every vertex.
+TEST(SplayTetrahedra, PiecesOfAgreeingStarsAreJoined) {
+  for (const std::string family : {"uniform", "grid", "sphere", "cospherical"}) {
+    const auto points = generators::generate(family, 300, 4).points;
+    const auto delaunay = engine::triangulate(points, {}).tetrahedra;
+    const auto expected = engine::canonical_tetrahedra(delaunay);
+    // Three lone tetrahedra: Delaunay ones (so not flat), on disjoint vertices from 50 up (the
+    // pool offered to stars that do not span 3D is the first points), chosen so that every other
+    // vertex keeps an input tetrahedron (one left with none would look for near vertices). No
+    // other input tetrahedron has their vertices, so no other star ever learns of them.
+    std::vector<engine::Tetrahedron> lone;
+    auto in_lone = [&](VertexId v) {
+      return std::any_of(lone.begin(), lone.end(), [&](const auto& q) {
+        return std::find(q.begin(), q.end(), v) != q.end();
+      });
+    };
+    auto rest = [&] {
+      std::vector<engine::Tetrahedron> kept;
+      for (const auto& t : delaunay) {
+        if (std::none_of(t.begin(), t.end(), in_lone)) kept.push_back(t);
+      }
+      return kept;
+    };
+    for (const auto& t : delaunay) {
+      if (lone.size() == 3 || *std::min_element(t.begin(), t.end()) < 50 ||
+          std::any_of(t.begin(), t.end(), in_lone)) {
+        continue;
+      }
+      lone.push_back(t);
+      std::vector<char> kept_vertex(points.size(), 0);
+      for (const auto& k : rest()) {
+        for (const VertexId v : k) kept_vertex[v] = 1;
+      }
+      for (VertexId v = 0; v < points.size(); ++v) {
+        if (kept_vertex[v] == 0 && !in_lone(v)) {
+          lone.pop_back();
+          break;
+        }
+      }
+    }
+    ASSERT_EQ(lone.size(), 3u) << family;
+    std::vector<engine::Tetrahedron> start = rest();
+    for (const auto& q : lone) start.push_back(q);
+    engine::SplayStats stats;
+    const auto repaired = engine::repair(points, start, stats);
+    EXPECT_GT(stats.bridges, 0u) << family;
+    EXPECT_EQ(engine::canonical_tetrahedra(repaired), expected) << family;
+    EXPECT_TRUE(engine::validate(points, repaired).valid()) << family;
+  }
+}
+
 // Equal points are one vertex of the repair: copies of generated points, and a point written with
 // zeros of either sign (-0.0 == +0.0, though their bits differ).
 TEST(SplayTetrahedra, EqualPointsAreOneVertex) {

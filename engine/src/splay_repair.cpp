@@ -16,6 +16,7 @@
 #include "insertion_order.hpp"
 #include "parallel_ranges.hpp"
 #include "radix_sort.hpp"
+#include "star_pieces.hpp"
 #include "star_splaying.hpp"
 #include "walked_mesh_stars.hpp"
 
@@ -385,6 +386,35 @@ struct ScanFindings {
   std::uint64_t non_delaunay_faces = 0;
 };
 
+// Whether face f of t and face g of u are one triangle with opposite orientations, as the two
+// tetrahedra across a face of a combinatorially consistent mesh see it. Then, where the five points
+// are distinct, t's test of u's apex and u's test of t's apex are the sign of one lifted
+// determinant, ties broken alike by the perturbation, whatever u's orientation (docs/design.md,
+// "The exact scan").
+bool seen_oppositely(const Tet& t, std::size_t f, const Tet& u, std::size_t g) {
+  const auto& mine = kFaceVertex[f];
+  const auto& theirs = kFaceVertex[g];
+  const VertexId p = t.vertex[static_cast<std::size_t>(mine[0])];
+  const VertexId q = t.vertex[static_cast<std::size_t>(mine[1])];
+  const VertexId r = t.vertex[static_cast<std::size_t>(mine[2])];
+  for (std::size_t s = 0; s < 3; ++s) {
+    if (u.vertex[static_cast<std::size_t>(theirs[s])] != p) continue;
+    return u.vertex[static_cast<std::size_t>(theirs[(s + 1) % 3])] == r &&
+           u.vertex[static_cast<std::size_t>(theirs[(s + 2) % 3])] == q;
+  }
+  return false;
+}
+
+// Point p differs from each of q's four points (coordinates, not ids: an input's equal points
+// are distinct vertices until the repair merges them).
+bool distinct_from_all(const std::vector<Point3>& points, const Quad& q, VertexId p) {
+  const Point3& a = points[p];
+  return std::none_of(q.begin(), q.end(), [&](VertexId v) {
+    const Point3& b = points[v];
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+  });
+}
+
 }  // namespace
 
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
@@ -409,9 +439,10 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     }
   };
   // The exact scan, over the run's threads: every non-Delaunay face (infinite tetrahedra included:
-  // a reflex hull edge) and every flat or inverted finite tetrahedron seeds its vertices. A face is
-  // tested from both sides where an inexact kernel built the mesh (its two tetrahedra need not be
-  // what their insphere tests agree on); on an exactly built mesh one side decides.
+  // a reflex hull edge) and every flat or inverted finite tetrahedron seeds its vertices. One side
+  // of a face decides on an exactly built mesh, and on any mesh where the two finite tetrahedra
+  // see one triangle oppositely (seen_oppositely); elsewhere an inexact kernel's mesh has its face
+  // tested from both sides, since its two tetrahedra need not agree.
   std::vector<ScanFindings> findings(static_cast<std::size_t>(parts));
   in_parallel_ranges(live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     ScanFindings& found = findings[part];
@@ -449,8 +480,10 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
       }
       const TetId i = live[k];
       const Tet& t = mesh.tets[i];
-      if (!t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
-                                              points[t.vertex[2]], points[t.vertex[3]]) <= 0) {
+      const bool positive =
+          !t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
+                                              points[t.vertex[2]], points[t.vertex[3]]) > 0;
+      if (!t.is_infinite() && !positive) {
         ++found.bad_tetrahedra;
         note_quad(t.vertex);
       }
@@ -460,7 +493,11 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
         const Tet& u = mesh.tets[other];
         const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
         const VertexId mine = t.vertex[f];
-        const bool one_side = exact_mesh && apex != kInfiniteVertex;
+        const bool one_side =
+            apex != kInfiniteVertex &&
+            (exact_mesh ||
+             (positive && distinct_from_all(points, t.vertex, apex) &&
+              seen_oppositely(t, f, u, static_cast<std::size_t>(ref_face(t.neighbor[f])))));
         const bool bad =
             (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
             (!one_side && mine != kInfiniteVertex && in_conflict<Exact>(points, u.vertex, mine));
@@ -734,6 +771,15 @@ std::vector<Tetrahedron> splay_tetrahedra(const std::vector<Point3>& points,
   }
   stats.seeds = vertices.size();
   splayer.run();
+  // Stars that agree but fall apart into pieces (a lone input tetrahedron keeps its four to
+  // itself): each piece is bridged to another by its closest pair across, an edge every star
+  // keeps, until one piece holds every vertex (star_pieces.hpp).
+  for (auto bridges = bridges_between_pieces(points, vertices, splayer); !bridges.empty();
+       bridges = bridges_between_pieces(points, vertices, splayer)) {
+    stats.bridges += bridges.size();
+    for (const auto& [x, y] : bridges) splayer.introduce(x, y);
+    splayer.run();
+  }
   stats.stars = splayer.counts().stars;
   stats.offers = splayer.counts().offers;
   stats.changes = splayer.counts().changes;

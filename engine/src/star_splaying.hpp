@@ -46,6 +46,11 @@ class StarSplayer {
   // the star of each of its active vertices and in the mesh at each inactive one, and every
   // tetrahedron of the mesh at an active vertex with an inactive vertex is in the active star.
   void run();
+  // Offers active x and y to each other's stars; run() then reconciles what that changed.
+  void introduce(VertexId x, VertexId y) {
+    offer(x, y);
+    offer(y, x);
+  }
 
   [[nodiscard]] bool active(VertexId x) const { return slot_[x] >= 0; }
   [[nodiscard]] const std::vector<VertexId>& active_vertices() const { return active_; }

@@ -585,6 +585,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"offers", r.offers},
                   {"changes", r.changes},
                   {"regrown", r.regrown},
+                  {"bridges", r.bridges},
                   {"tetrahedra_removed", r.tetrahedra_removed},
                   {"tetrahedra_created", r.tetrahedra_created},
                   {"seconds", r.seconds},

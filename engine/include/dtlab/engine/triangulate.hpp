@@ -168,6 +168,8 @@ struct SplayStats {
   std::uint64_t offers = 0;   // vertices offered to stars
   std::uint64_t changes = 0;  // offers that changed a star
   std::uint64_t regrown = 0;  // rounds that splayed more vertices where a broken mesh did not fit
+  // `dtlab repair`: pieces of agreeing stars joined by their closest pair (star_pieces.hpp)
+  std::uint64_t bridges = 0;
   std::uint64_t tetrahedra_removed = 0;
   std::uint64_t tetrahedra_created = 0;
   double seconds = 0.0;            // scan, splaying and writing back (included in seconds.total)
