@@ -494,8 +494,15 @@ class IncrementalDelaunay {
     }
     std::uint64_t flips = 0;
     // Lawson flips raise no face of the lifted triangulation, so they cannot cycle; the bound
-    // only guards against an inexact kernel.
-    const std::uint64_t bound = 64 * mesh_.tets.size() + 1024;
+    // only guards against an inexact kernel, whose flips can. It counts the live tetrahedra, not
+    // the slots: in DAG mode every flip adds slots, and a bound on slots let a sweep after a
+    // cycling first pass run to tens of millions of flips (the parallel fuzzer: 60 points, the
+    // fast kernel, over 3 GB of pending faces).
+    std::uint64_t live = 0;
+    for (TetId t = 0; t < mesh_.tets.size(); ++t) {
+      live += mesh_.tets.is_alive(t, std::memory_order_acquire) ? 1 : 0;
+    }
+    const std::uint64_t bound = 64 * live + 1024;
     while (!faces.empty() && flips < bound) {
       auto [t, f] = faces.back();
       faces.pop_back();
