@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include "dtlab/engine/point_set_info.hpp"
@@ -18,6 +19,7 @@
 #include "radix_sort.hpp"
 #include "star_pieces.hpp"
 #include "star_splaying.hpp"
+#include "vertex_grid.hpp"
 #include "walked_mesh_stars.hpp"
 
 namespace dtlab::engine {
@@ -34,66 +36,22 @@ class NearGrid {
  public:
   NearGrid(const std::vector<Point3>& points, const std::vector<VertexId>& vertices)
       : points_(points) {
-    if (vertices.empty()) return;
-    lo_ = hi_ = points[vertices[0]];
-    for (const VertexId v : vertices) {
-      const Point3& p = points[v];
-      lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
-      hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y), std::max(hi_.z, p.z)};
-    }
-    cells_ =
-        std::clamp(static_cast<int>(std::cbrt(static_cast<double>(vertices.size()) / 2)), 1, 256);
-    first_.assign(static_cast<std::size_t>(cells_) * cells_ * cells_ + 1, 0);
-    for (const VertexId v : vertices) ++first_[cell_id(cell(points[v])) + 1];
-    std::partial_sum(first_.begin(), first_.end(), first_.begin());
-    members_.resize(vertices.size());
-    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (const VertexId v : vertices) members_[fill[cell_id(cell(points[v]))]++] = v;
+    if (!vertices.empty()) grid_.emplace(points, vertices);
   }
 
   void near(VertexId x, std::vector<VertexId>& out) const {
-    if (members_.empty()) return;
-    const std::array<int, 3> c = cell(points_[x]);
-    for (int r = 0; r < cells_; ++r) {
+    if (!grid_) return;
+    const std::array<int, 3> c = grid_->cell(points_[x]);
+    for (int r = 0; r < grid_->cells(); ++r) {
       const std::size_t before = out.size();
-      for (int i = c[0] - r; i <= c[0] + r; ++i) {
-        for (int j = c[1] - r; j <= c[1] + r; ++j) {
-          for (int k = c[2] - r; k <= c[2] + r; ++k) {
-            if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r)
-              continue;
-            if (i < 0 || j < 0 || k < 0 || i >= cells_ || j >= cells_ || k >= cells_) continue;
-            const std::size_t id = cell_id({i, j, k});
-            for (std::uint32_t m = first_[id]; m < first_[id + 1]; ++m) out.push_back(members_[m]);
-          }
-        }
-      }
+      grid_->for_shell(c, r, [&out](VertexId v) { out.push_back(v); });
       if (before >= 8) return;  // this shell was the one more after reaching 8
     }
   }
 
  private:
-  [[nodiscard]] std::array<int, 3> cell(const Point3& p) const {
-    auto axis = [&](double x, double l, double h) {
-      const double span = h - l;
-      if (!(span > 0) || !std::isfinite(span)) return 0;
-      const double t = (x - l) / span * cells_;
-      return t <= 0 ? 0 : t >= cells_ ? cells_ - 1 : static_cast<int>(t);
-    };
-    return {axis(p.x, lo_.x, hi_.x), axis(p.y, lo_.y, hi_.y), axis(p.z, lo_.z, hi_.z)};
-  }
-  [[nodiscard]] std::size_t cell_id(const std::array<int, 3>& c) const {
-    return (static_cast<std::size_t>(c[0]) * static_cast<std::size_t>(cells_) +
-            static_cast<std::size_t>(c[1])) *
-               static_cast<std::size_t>(cells_) +
-           static_cast<std::size_t>(c[2]);
-  }
-
   const std::vector<Point3>& points_;
-  Point3 lo_{};
-  Point3 hi_{};
-  int cells_ = 1;
-  std::vector<std::uint32_t> first_;
-  std::vector<VertexId> members_;
+  std::optional<VertexGrid> grid_;
 };
 
 // 32 bits of a hash of a point's coordinates (-0.0 read as +0.0, since the two are equal): equal

@@ -9,6 +9,8 @@
 #include <limits>
 #include <numeric>
 
+#include "vertex_grid.hpp"
+
 namespace dtlab::engine {
 namespace {
 
@@ -76,88 +78,27 @@ bool nearer(const std::vector<Point3>& points, const Pair& p, const Pair& q) {
   return std::pair(p.inside, p.outside) < std::pair(q.inside, q.outside);
 }
 
-// The vertices in a uniform grid of cells, for nearest-vertex searches in growing shells.
-class VertexGrid {
- public:
-  VertexGrid(const std::vector<Point3>& points, const std::vector<VertexId>& vertices)
-      : points_(points) {
-    lo_ = hi_ = points[vertices.front()];
-    for (const VertexId v : vertices) {
-      const Point3& p = points[v];
-      lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z)};
-      hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y), std::max(hi_.z, p.z)};
-    }
-    cells_ =
-        std::clamp(static_cast<int>(std::cbrt(static_cast<double>(vertices.size()) / 2)), 1, 128);
-    // The narrowest cell along an axis the points spread over: a point r shells away from a
-    // query's cell is at least (r - 1) such widths away (one width spent on rounding).
-    min_width_ = std::numeric_limits<double>::infinity();
-    for (const double span : {hi_.x - lo_.x, hi_.y - lo_.y, hi_.z - lo_.z}) {
-      if (span > 0 && std::isfinite(span)) min_width_ = std::min(min_width_, span / cells_);
-    }
-    first_.assign(static_cast<std::size_t>(cells_) * cells_ * cells_ + 1, 0);
-    for (const VertexId v : vertices) ++first_[cell_id(cell(points[v])) + 1];
-    std::partial_sum(first_.begin(), first_.end(), first_.begin());
-    members_.resize(vertices.size());
-    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (const VertexId v : vertices) members_[fill[cell_id(cell(points[v]))]++] = v;
+// The nearest vertex to x whose piece differs from x's, or none: the grid's shells around x's
+// cell until the best found is nearer than anything in the shells beyond.
+template <class PieceOf>
+Pair nearest_across(const std::vector<Point3>& points, const VertexGrid& grid, VertexId x,
+                    const PieceOf& piece_of) {
+  const std::array<int, 3> c = grid.cell(points[x]);
+  const VertexId mine = piece_of(x);
+  Pair best;
+  for (int r = 0; r < grid.cells(); ++r) {
+    grid.for_shell(c, r, [&](VertexId y) {
+      if (piece_of(y) == mine) return;
+      const Pair candidate{x, y, squared_distance(points[x], points[y])};
+      if (nearer(points, candidate, best)) best = candidate;
+    });
+    // Every vertex of the next shells is at least r widths away, r - 1 to allow for the rounding
+    // of the cells' bounds: stop when the best is nearer.
+    const double reach = std::max(r - 1, 0) * grid.min_width();
+    if (best.inside != kInfiniteVertex && best.approximate * (1 + 0x1p-30) < reach * reach) break;
   }
-
-  // The nearest vertex to x whose piece differs from x's, or none.
-  template <class PieceOf>
-  Pair nearest_across(VertexId x, const PieceOf& piece_of) const {
-    const std::array<int, 3> c = cell(points_[x]);
-    const VertexId mine = piece_of(x);
-    Pair best;
-    for (int r = 0; r < cells_; ++r) {
-      for (int i = std::max(c[0] - r, 0); i <= std::min(c[0] + r, cells_ - 1); ++i) {
-        for (int j = std::max(c[1] - r, 0); j <= std::min(c[1] + r, cells_ - 1); ++j) {
-          for (int k = std::max(c[2] - r, 0); k <= std::min(c[2] + r, cells_ - 1); ++k) {
-            if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r) {
-              continue;
-            }
-            const std::size_t id = cell_id({i, j, k});
-            for (std::uint32_t m = first_[id]; m < first_[id + 1]; ++m) {
-              const VertexId y = members_[m];
-              if (piece_of(y) == mine) continue;
-              const Pair candidate{x, y, squared_distance(points_[x], points_[y])};
-              if (nearer(points_, candidate, best)) best = candidate;
-            }
-          }
-        }
-      }
-      // Every vertex of the next shells is at least r widths away, r - 1 to allow for the
-      // rounding of the cells' bounds: stop when the best is nearer.
-      const double reach = std::max(r - 1, 0) * min_width_;
-      if (best.inside != kInfiniteVertex && best.approximate * (1 + 0x1p-30) < reach * reach) break;
-    }
-    return best;
-  }
-
- private:
-  [[nodiscard]] std::array<int, 3> cell(const Point3& p) const {
-    auto axis = [&](double x, double l, double h) {
-      const double span = h - l;
-      if (!(span > 0) || !std::isfinite(span)) return 0;
-      const double t = (x - l) / span * cells_;
-      return t <= 0 ? 0 : t >= cells_ ? cells_ - 1 : static_cast<int>(t);
-    };
-    return {axis(p.x, lo_.x, hi_.x), axis(p.y, lo_.y, hi_.y), axis(p.z, lo_.z, hi_.z)};
-  }
-  [[nodiscard]] std::size_t cell_id(const std::array<int, 3>& c) const {
-    const auto n = static_cast<std::size_t>(cells_);
-    return (static_cast<std::size_t>(c[0]) * n + static_cast<std::size_t>(c[1])) * n +
-           static_cast<std::size_t>(c[2]);
-  }
-
-  const std::vector<Point3>& points_;
-  Point3 lo_{};
-  Point3 hi_{};
-  int cells_ = 1;
-  double min_width_ = 0.0;
-  std::vector<std::uint32_t> first_;
-  std::vector<VertexId> members_;
-};
+  return best;
+}
 
 }  // namespace
 
@@ -187,7 +128,7 @@ std::vector<std::pair<VertexId, VertexId>> bridges_between_pieces(
   std::vector<Pair> best(points.size());
   for (const VertexId v : vertices) {
     if (piece[v] == largest) continue;
-    const Pair p = grid.nearest_across(v, [&](VertexId y) { return piece[y]; });
+    const Pair p = nearest_across(points, grid, v, [&](VertexId y) { return piece[y]; });
     if (nearer(points, p, best[piece[v]])) best[piece[v]] = p;
   }
   std::vector<std::pair<VertexId, VertexId>> bridges;
