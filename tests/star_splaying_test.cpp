@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <limits>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -14,6 +17,7 @@
 #include "dtlab/generators/generators.hpp"
 #include "incremental_delaunay.hpp"
 #include "splay_repair.hpp"
+#include "star_pieces.hpp"
 #include "vertex_star.hpp"
 #include "walked_mesh_stars.hpp"
 
@@ -144,6 +148,75 @@ TEST(SplayTetrahedra, PiecesOfAgreeingStarsAreJoined) {
     EXPECT_GT(stats.bridges, 0u) << family;
     EXPECT_EQ(engine::canonical_tetrahedra(repaired), expected) << family;
     EXPECT_TRUE(engine::validate(points, repaired).valid()) << family;
+  }
+}
+
+// The bridges are the true closest pairs across, against a brute force over every pair: pieces
+// interleaved in space (blocks of a coarse grid), two halves (large pieces), a piece of one
+// vertex, and many pieces of one vertex (where the searches' stopping rule decides).
+TEST(StarPieces, ClosestPairsAcrossAreTheBruteForceOnes) {
+  for (const std::string family : {"uniform", "cluster", "grid"}) {
+    const auto points = generators::generate(family, 3000, 9).points;
+    std::vector<VertexId> vertices;
+    {
+      std::vector<std::pair<std::array<double, 3>, VertexId>> seen;
+      for (VertexId v = 0; v < points.size(); ++v) {
+        seen.push_back({{points[v].x, points[v].y, points[v].z}, v});
+      }
+      std::sort(seen.begin(), seen.end());
+      for (std::size_t i = 0; i < seen.size(); ++i) {
+        if (i == 0 || seen[i].first != seen[i - 1].first) vertices.push_back(seen[i].second);
+      }
+      std::sort(vertices.begin(), vertices.end());
+    }
+    Point3 lo = points[vertices[0]];
+    Point3 hi = lo;
+    for (const VertexId v : vertices) {
+      lo = {std::min(lo.x, points[v].x), std::min(lo.y, points[v].y), std::min(lo.z, points[v].z)};
+      hi = {std::max(hi.x, points[v].x), std::max(hi.y, points[v].y), std::max(hi.z, points[v].z)};
+    }
+    auto block = [&](double x, double l, double h) {
+      return h > l ? static_cast<int>(4 * (x - l) / (h - l)) : 0;
+    };
+    const std::vector<std::pair<std::string, std::function<int(VertexId)>>> labelings{
+        {"blocks",
+         [&](VertexId v) {
+           const Point3& p = points[v];
+           return (block(p.x, lo.x, hi.x) + 3 * block(p.y, lo.y, hi.y) +
+                   7 * block(p.z, lo.z, hi.z)) %
+                  5;
+         }},
+        {"halves", [&](VertexId v) { return points[v].x < (lo.x + hi.x) / 2 ? 0 : 1; }},
+        {"one vertex", [&](VertexId v) { return v == vertices[vertices.size() / 2] ? 1 : 0; }},
+        // Pieces of one vertex each, whose bridge is the vertex's nearest neighbour: a search that
+        // stops a shell early misses it wherever it lies in the next shell.
+        {"singletons", [&](VertexId v) { return v % 37 == 5 ? static_cast<int>(v) : -1; }}};
+    for (const auto& [name, label] : labelings) {
+      // A piece is named by its lowest vertex.
+      std::map<int, VertexId> name_of;
+      for (const VertexId v : vertices) name_of.emplace(label(v), v);
+      std::vector<VertexId> piece(points.size(), engine::kInfiniteVertex);
+      for (const VertexId v : vertices) piece[v] = name_of.at(label(v));
+      const auto bridges = engine::closest_pairs_across(points, vertices, piece);
+      ASSERT_EQ(bridges.size(), name_of.size() - 1) << family << " " << name;
+      auto squared = [&](VertexId a, VertexId b) {
+        const double dx = points[a].x - points[b].x;
+        const double dy = points[a].y - points[b].y;
+        const double dz = points[a].z - points[b].z;
+        return dx * dx + dy * dy + dz * dz;
+      };
+      for (const auto& [x, y] : bridges) {
+        ASSERT_NE(piece[x], piece[y]) << family << " " << name;
+        double brute = std::numeric_limits<double>::infinity();
+        for (const VertexId a : vertices) {
+          if (piece[a] != piece[x]) continue;
+          for (const VertexId b : vertices) {
+            if (piece[b] != piece[x]) brute = std::min(brute, squared(a, b));
+          }
+        }
+        EXPECT_EQ(squared(x, y), brute) << family << " " << name << " piece " << piece[x];
+      }
+    }
   }
 }
 

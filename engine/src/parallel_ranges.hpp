@@ -37,8 +37,13 @@ void in_parallel_ranges(std::size_t n, int parts, Work work,
   };
   std::vector<std::thread> helpers;
   helpers.reserve(count - 1);
-  for (std::size_t part = 0; part + 1 < count; ++part) {
-    helpers.emplace_back(guarded, n * part / count, n * (part + 1) / count, part);
+  try {
+    for (std::size_t part = 0; part + 1 < count; ++part) {
+      helpers.emplace_back(guarded, n * part / count, n * (part + 1) / count, part);
+    }
+  } catch (...) {  // a thread that could not start (std::system_error): end the started ones
+    for (std::thread& h : helpers) h.join();
+    throw;
   }
   guarded(n * (count - 1) / count, n, count - 1);
   for (std::thread& h : helpers) h.join();

@@ -731,9 +731,17 @@ std::vector<Tetrahedron> splay_tetrahedra(const std::vector<Point3>& points,
   splayer.run();
   // Stars that agree but fall apart into pieces (a lone input tetrahedron keeps its four to
   // itself): each piece is bridged to another by its closest pair across, an edge every star
-  // keeps, until one piece holds every vertex (star_pieces.hpp).
-  for (auto bridges = bridges_between_pieces(points, vertices, splayer); !bridges.empty();
-       bridges = bridges_between_pieces(points, vertices, splayer)) {
+  // keeps, until one piece holds every vertex (star_pieces.hpp). Each round must leave fewer
+  // pieces; one that does not is an error, not a loop without end.
+  std::size_t bridged_before = vertices.size();
+  for (;;) {
+    const auto bridges =
+        closest_pairs_across(points, vertices, pieces_of_stars(points.size(), vertices, splayer));
+    if (bridges.empty()) break;
+    if (bridges.size() >= bridged_before) {
+      throw std::logic_error("star splaying: bridging did not join the pieces of agreeing stars");
+    }
+    bridged_before = bridges.size();
     stats.bridges += bridges.size();
     for (const auto& [x, y] : bridges) splayer.introduce(x, y);
     splayer.run();

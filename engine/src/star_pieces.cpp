@@ -78,34 +78,36 @@ bool nearer(const std::vector<Point3>& points, const Pair& p, const Pair& q) {
   return std::pair(p.inside, p.outside) < std::pair(q.inside, q.outside);
 }
 
-// The nearest vertex to x whose piece differs from x's, or none: the grid's shells around x's
-// cell until the best found is nearer than anything in the shells beyond.
-template <class PieceOf>
-Pair nearest_across(const std::vector<Point3>& points, const VertexGrid& grid, VertexId x,
-                    const PieceOf& piece_of) {
+// The nearest vertex to x whose piece differs from x's, if nearer than `bound` (its piece's best
+// pair so far, or none), else none: the grid's shells around x's cell until nothing in the
+// shells beyond can be nearer than the better of the two. With the bound, only the vertices near
+// the piece's border search far.
+Pair nearest_across(const std::vector<Point3>& points, const VertexGrid& grid,
+                    const std::vector<VertexId>& piece, VertexId x, const Pair& bound) {
   const std::array<int, 3> c = grid.cell(points[x]);
-  const VertexId mine = piece_of(x);
   Pair best;
   for (int r = 0; r < grid.cells(); ++r) {
     grid.for_shell(c, r, [&](VertexId y) {
-      if (piece_of(y) == mine) return;
+      if (piece[y] == piece[x]) return;
       const Pair candidate{x, y, squared_distance(points[x], points[y])};
       if (nearer(points, candidate, best)) best = candidate;
     });
     // Every vertex of the next shells is at least r widths away, r - 1 to allow for the rounding
-    // of the cells' bounds: stop when the best is nearer.
+    // of the cells' bounds. Where reach^2 is far above the subnormals, a squared distance below
+    // it (with a margin for its rounding) is nearer than all of them.
     const double reach = std::max(r - 1, 0) * grid.min_width();
-    if (best.inside != kInfiniteVertex && best.approximate * (1 + 0x1p-30) < reach * reach) break;
+    const double limit = std::min(best.approximate, bound.approximate);
+    if (reach * reach > 0x1p-900 && limit * (1 + 0x1p-30) < reach * reach) break;
   }
   return best;
 }
 
 }  // namespace
 
-std::vector<std::pair<VertexId, VertexId>> bridges_between_pieces(
-    const std::vector<Point3>& points, const std::vector<VertexId>& vertices,
-    const StarSplayer& splayer) {
-  Pieces pieces(points.size());
+std::vector<VertexId> pieces_of_stars(std::size_t point_count,
+                                      const std::vector<VertexId>& vertices,
+                                      const StarSplayer& splayer) {
+  Pieces pieces(point_count);
   for (const VertexId v : vertices) {
     for (const Quad& q : splayer.star(v).tetrahedra()) {
       for (const VertexId u : q) {
@@ -113,22 +115,31 @@ std::vector<std::pair<VertexId, VertexId>> bridges_between_pieces(
       }
     }
   }
-  std::vector<VertexId> piece(points.size(), kInfiniteVertex);
+  std::vector<VertexId> piece(point_count, kInfiniteVertex);
+  for (const VertexId v : vertices) piece[v] = pieces.find(v);
+  return piece;
+}
+
+std::vector<std::pair<VertexId, VertexId>> closest_pairs_across(
+    const std::vector<Point3>& points, const std::vector<VertexId>& vertices,
+    const std::vector<VertexId>& piece) {
   std::vector<std::size_t> size(points.size(), 0);
-  for (const VertexId v : vertices) ++size[piece[v] = pieces.find(v)];
+  for (const VertexId v : vertices) ++size[piece[v]];
   VertexId largest = piece[vertices.front()];
   for (const VertexId v : vertices) {
-    if (size[piece[v]] > size[largest]) largest = piece[v];
+    if (size[piece[v]] > size[largest] || (size[piece[v]] == size[largest] && piece[v] < largest)) {
+      largest = piece[v];
+    }
   }
   if (size[largest] == vertices.size()) return {};
   // Each smaller piece's closest pair across: the nearest vertex of another piece from each of
   // its vertices, the nearest of those. The largest piece needs no search of its own: every
-  // other piece's bridge reaches another piece, so each round at least halves their number.
+  // other piece's pair reaches another piece.
   const VertexGrid grid(points, vertices);
   std::vector<Pair> best(points.size());
   for (const VertexId v : vertices) {
     if (piece[v] == largest) continue;
-    const Pair p = nearest_across(points, grid, v, [&](VertexId y) { return piece[y]; });
+    const Pair p = nearest_across(points, grid, piece, v, best[piece[v]]);
     if (nearer(points, p, best[piece[v]])) best[piece[v]] = p;
   }
   std::vector<std::pair<VertexId, VertexId>> bridges;

@@ -57,15 +57,17 @@ class VertexGrid {
     return {axis(p.x, lo_.x, hi_.x), axis(p.y, lo_.y, hi_.y), axis(p.z, lo_.z, hi_.z)};
   }
 
-  // Calls visit(v) for every vertex in the cells at Chebyshev distance r from cell c.
+  // Calls visit(v) for every vertex in the cells at Chebyshev distance r from cell c: the
+  // shell's faces only, O(r^2) cells, not the whole cube around it.
   template <class Visit>
   void for_shell(const std::array<int, 3>& c, int r, const Visit& visit) const {
     for (int i = std::max(c[0] - r, 0); i <= std::min(c[0] + r, cells_ - 1); ++i) {
       for (int j = std::max(c[1] - r, 0); j <= std::min(c[1] + r, cells_ - 1); ++j) {
-        for (int k = std::max(c[2] - r, 0); k <= std::min(c[2] + r, cells_ - 1); ++k) {
-          if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r) {
-            continue;
-          }
+        // Inside the i and j faces only the two k faces are on the shell.
+        const bool on_face = std::abs(i - c[0]) == r || std::abs(j - c[1]) == r;
+        const int step = on_face ? 1 : 2 * r;
+        for (int k = c[2] - r; k <= c[2] + r; k += step) {
+          if (k < 0 || k >= cells_) continue;
           const std::size_t id = cell_id({i, j, k});
           for (std::uint32_t m = first_[id]; m < first_[id + 1]; ++m) visit(members_[m]);
         }
