@@ -348,7 +348,7 @@ struct ScanFindings {
 // tetrahedra across a face of a combinatorially consistent mesh see it. Then, where the five points
 // are distinct, t's test of u's apex and u's test of t's apex are the sign of one lifted
 // determinant, ties broken alike by the perturbation, whatever u's orientation (docs/design.md,
-// "The exact scan").
+// "The exact scan's sides").
 bool seen_oppositely(const Tet& t, std::size_t f, const Tet& u, std::size_t g) {
   const auto& mine = kFaceVertex[f];
   const auto& theirs = kFaceVertex[g];
@@ -398,9 +398,10 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   };
   // The exact scan, over the run's threads: every non-Delaunay face (infinite tetrahedra included:
   // a reflex hull edge) and every flat or inverted finite tetrahedron seeds its vertices. One side
-  // of a face decides on an exactly built mesh, and on any mesh where the two finite tetrahedra
-  // see one triangle oppositely (seen_oppositely); elsewhere an inexact kernel's mesh has its face
-  // tested from both sides, since its two tetrahedra need not agree.
+  // of a face decides on an exactly built mesh, and on any mesh where the lower tetrahedron is
+  // finite and positively oriented, the apex across is none of its points and the two see one
+  // triangle oppositely (seen_oppositely); elsewhere an inexact kernel's mesh has its face tested
+  // from both sides, since its two tetrahedra need not agree.
   std::vector<ScanFindings> findings(static_cast<std::size_t>(parts));
   in_parallel_ranges(live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     ScanFindings& found = findings[part];

@@ -78,10 +78,11 @@ bool nearer(const std::vector<Point3>& points, const Pair& p, const Pair& q) {
   return std::pair(p.inside, p.outside) < std::pair(q.inside, q.outside);
 }
 
-// The nearest vertex to x whose piece differs from x's, if nearer than `bound` (its piece's best
-// pair so far, or none), else none: the grid's shells around x's cell until nothing in the
-// shells beyond can be nearer than the better of the two. With the bound, only the vertices near
-// the piece's border search far.
+// The nearest vertex to x whose piece differs from x's among the grid's shells around x's cell,
+// searched until nothing in the shells beyond can be nearer than the better of what was found and
+// `bound` (x's piece's best pair so far, or none). So the result is x's nearest across wherever
+// that beats `bound`; otherwise it may be none or a farther one, which the caller, keeping the
+// piece's best, discards. With the bound, only the vertices near the piece's border search far.
 Pair nearest_across(const std::vector<Point3>& points, const VertexGrid& grid,
                     const std::vector<VertexId>& piece, VertexId x, const Pair& bound) {
   const std::array<int, 3> c = grid.cell(points[x]);
