@@ -112,6 +112,30 @@ TEST(EpochTable, FindsWhatWasInsertedAcrossGrowthAndClears) {
   EXPECT_TRUE(*table.find(1));
 }
 
+// find_or_insert (the cavity search's one probe a face): a new key gets the value given and
+// true, a key already there keeps its value and gives false, across growth and clears, and the
+// size counts each key once.
+TEST(EpochTable, FindOrInsertInsertsOnlyNewKeys) {
+  engine::EpochTable<std::uint32_t, bool> table;
+  for (const std::uint32_t n : {100u, 3000u}) {
+    table.clear();
+    for (std::uint32_t k = 0; k < n; ++k) {
+      auto [value, inserted] = table.find_or_insert(k * 40503u, k % 2 == 0);
+      EXPECT_TRUE(inserted) << k;
+      EXPECT_EQ(*value, k % 2 == 0) << k;
+    }
+    EXPECT_EQ(table.size(), n);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      auto [value, inserted] = table.find_or_insert(k * 40503u, false);
+      EXPECT_FALSE(inserted) << k;
+      EXPECT_EQ(*value, k % 2 == 0) << k;  // the first value, not the one offered now
+      *value = true;
+    }
+    EXPECT_EQ(table.size(), n);
+    for (std::uint32_t k = 0; k < n; ++k) EXPECT_TRUE(*table.find(k * 40503u)) << k;
+  }
+}
+
 // The replacement itself. A boundary that does not close up (three of a tetrahedron's four faces:
 // three of its edges lie on one face each) is Impossible: no live record changes (nor any dead
 // slot other than the three it wrote into), those three are dead again, and they come back for

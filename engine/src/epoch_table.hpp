@@ -6,6 +6,7 @@
 // every later, small one probing a table spread over megabytes.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace dtlab::engine {
@@ -27,6 +28,18 @@ class EpochTable {
       if (e.epoch != epoch_) return nullptr;
       if (e.key == key) return &e.value;
     }
+  }
+  // The value stored for key, and false; or, when key is absent, a new entry for it with `fresh`
+  // as its value, and true: one probe sequence where find() then insert() take two.
+  std::pair<Value*, bool> find_or_insert(Key key, Value fresh) {
+    if (2 * (count_ + 1) > used_) grow();
+    std::size_t i = slot_of(key);
+    for (; entries_[i].epoch == epoch_; i = (i + 1) & (used_ - 1)) {
+      if (entries_[i].key == key) return {&entries_[i].value, false};
+    }
+    entries_[i] = {key, epoch_, fresh};
+    ++count_;
+    return {&entries_[i].value, true};
   }
   // key must not be in the table.
   void insert(Key key, Value value) {

@@ -25,7 +25,6 @@
 // abc, or on it inside circle abc.
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -39,6 +38,7 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/predicates/perturbation.hpp"
 #include "mesh_geometry.hpp"
+#include "phase_clock.hpp"
 #include "point_location.hpp"
 #include "shared_mesh.hpp"
 #include "slot_allocator.hpp"
@@ -149,8 +149,7 @@ class IncrementalDelaunay {
 
  private:
   Outcome insert_point(VertexId p) {
-    using Clock = std::chrono::steady_clock;
-    const auto t0 = Clock::now();
+    const PhaseClock::Ticks t0 = PhaseClock::now();
     std::array<int, 4> o{};
     TetId t = locator_.locate(p, o);
     bool refused = false;
@@ -170,9 +169,9 @@ class IncrementalDelaunay {
         t = locator_.locate(p, o);
       }
     }
-    const auto t1 = Clock::now();
+    const PhaseClock::Ticks t1 = PhaseClock::now();
     // Also when the leaf's lock was refused: a given-up attempt's location is still work done.
-    stats_.seconds.location += std::chrono::duration<double>(t1 - t0).count();
+    stats_.seconds.location += PhaseClock::seconds(t0, t1);
     if (refused) return give_up();
     if (t == kNoTet) {
       // With other threads rolling back under the descent, try the point again later.
@@ -185,7 +184,7 @@ class IncrementalDelaunay {
 
     if (cavity_) {
       if (const std::optional<Outcome> replaced = replace_cavity(t, p, o)) {
-        stats_.seconds.subdivision += std::chrono::duration<double>(Clock::now() - t1).count();
+        stats_.seconds.subdivision += PhaseClock::seconds(t1, PhaseClock::now());
         if (*replaced == Outcome::GaveUp) return give_up();
         sync_->commit();
         return *replaced;
@@ -193,8 +192,8 @@ class IncrementalDelaunay {
       // No outcome: the cavity failed (an inexact kernel); p goes in by flips.
     }
     const Outcome split = subdivide(t, p, o);
-    const auto t2 = Clock::now();
-    stats_.seconds.subdivision += std::chrono::duration<double>(t2 - t1).count();
+    const PhaseClock::Ticks t2 = PhaseClock::now();
+    stats_.seconds.subdivision += PhaseClock::seconds(t1, t2);
     if (split == Outcome::GaveUp) return give_up();
     if (split != Outcome::Inserted) {
       sync_->commit();
@@ -202,7 +201,7 @@ class IncrementalDelaunay {
     }
 
     const Outcome legal = legalize(p);
-    stats_.seconds.legalization += std::chrono::duration<double>(Clock::now() - t2).count();
+    stats_.seconds.legalization += PhaseClock::seconds(t2, PhaseClock::now());
     if (legal == Outcome::GaveUp) return give_up();
     sync_->commit();
     return legal;
@@ -229,13 +228,12 @@ class IncrementalDelaunay {
   // unsynchronized part): a node that contains p, a leaf when nobody changes the mesh meanwhile.
   // Counted like insert()'s own location: seconds.location, predicate calls, location steps.
   TetId locate_only(VertexId p) {
-    using Clock = std::chrono::steady_clock;
-    const auto t0 = Clock::now();
+    const PhaseClock::Ticks t0 = PhaseClock::now();
     slots_.begin_operation();  // insert() or end_operation() ends it
     std::array<int, 4> o{};
     const TetId t = locator_.locate(p, o);
     if (t != kNoTet) locator_.remember(t);  // the next point is near on the curve
-    stats_.seconds.location += std::chrono::duration<double>(Clock::now() - t0).count();
+    stats_.seconds.location += PhaseClock::seconds(t0, PhaseClock::now());
     return t;
   }
 

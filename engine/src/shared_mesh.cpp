@@ -44,6 +44,28 @@ std::vector<Tetrahedron> SharedMesh::collect(
         },
         1);
   };
+  auto copy_kept = [&](std::size_t i, Tetrahedron& t) {
+    t = tets[static_cast<TetId>(i)].vertex;
+    if (!representative.empty()) {
+      for (auto& v : t) v = representative[v];
+    }
+  };
+  if (parts == 1) {
+    // One thread: one pass, into room for every slot (reserved, so untouched beyond what the
+    // kept tetrahedra fill). Two passes, counting first, are what lets threads write their
+    // shares in place; alone they read the store twice (about 1 % of a sequential walk's run at
+    // a million points).
+    std::vector<Tetrahedron> out;
+    out.reserve(n);
+    for (std::size_t block = 0; block < blocks; ++block) {
+      const auto [begin, end] = slots_of(block);
+      for (std::size_t i = begin; i < end; ++i) {
+        if (kept(static_cast<TetId>(i))) copy_kept(i, out.emplace_back());
+      }
+      if (release && begin < end) tets.release_block_of(static_cast<TetId>(begin));
+    }
+    return out;
+  }
   // block_start[b]: where block b's first kept tetrahedron goes.
   std::vector<std::size_t> block_start(blocks + 1, 0);
   over_blocks(0, blocks, [&](std::size_t block) {
@@ -63,12 +85,7 @@ std::vector<Tetrahedron> SharedMesh::collect(
       const auto [begin, end] = slots_of(block);
       std::size_t at = block_start[block];
       for (std::size_t i = begin; i < end; ++i) {
-        if (!kept(static_cast<TetId>(i))) continue;
-        Tetrahedron& t = out[at++];
-        t = tets[static_cast<TetId>(i)].vertex;
-        if (!representative.empty()) {
-          for (auto& v : t) v = representative[v];
-        }
+        if (kept(static_cast<TetId>(i))) copy_kept(i, out[at++]);
       }
       if (release && begin < end) tets.release_block_of(static_cast<TetId>(begin));
     });

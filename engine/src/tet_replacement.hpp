@@ -346,28 +346,32 @@ class TetReplacement {
     assert(!dag_);
     const std::size_t n = boundary.size();
     scratch_created_.resize(n);
-    for (std::size_t j = 0; j < n; ++j) scratch_created_[j] = slots_.allocate();
+    fresh_records_.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      scratch_created_[j] = slots_.allocate();
+      fresh_records_[j] = &mesh_.tets[scratch_created_[j]];
+    }
     const TetId* ids = scratch_created_.data();
+    // The new records' addresses, looked up once: each is written up to four times below.
+    Tet* const* records = fresh_records_.data();
     // Face ref 4 j + g of new tetrahedron j, as the mesh names it.
     auto global = [ids](FaceRef local) { return face_ref(ids[ref_tet(local)], ref_face(local)); };
     CavityEdges::Pass edges = edges_.begin(3 * n);
     for (std::size_t j = 0; j < n; ++j) {
       const CavityFace& b = boundary[j];
-      Tet& fresh = mesh_.tets[ids[j]];
+      const auto face = static_cast<std::size_t>(b.face);
+      Tet& fresh = *records[j];
       fresh.vertex = mesh_.tets[b.inside].vertex;
-      fresh.vertex[static_cast<std::size_t>(b.face)] = p;
-      fresh.neighbor[static_cast<std::size_t>(b.face)] = b.outside;
-      for (int g = 0; g < 4; ++g) {
-        if (g == b.face) continue;
-        // The edge of face g without p: the vertices at the two positions other than b.face, g.
-        const auto& [u, w] =
-            kOtherTwo[static_cast<std::size_t>(b.face)][static_cast<std::size_t>(g)];
-        const auto self = static_cast<FaceRef>(4 * j + static_cast<std::size_t>(g));
+      fresh.vertex[face] = p;
+      fresh.neighbor[face] = b.outside;
+      for (const auto& [g, u, w] : kOtherFaces[face]) {
+        // Face g holds p and the edge (u, w) of the boundary face.
+        const auto self = static_cast<FaceRef>(4 * j + g);
         const FaceRef partner = edges.pair(fresh.vertex[u], fresh.vertex[w], self);
         // Branch-free: partner == self while the edge's second face is still to come (that face
         // writes both references then).
-        fresh.neighbor[static_cast<std::size_t>(g)] = global(partner);
-        mesh_.tets[ids[ref_tet(partner)]].neighbor[static_cast<std::size_t>(ref_face(partner))] =
+        fresh.neighbor[g] = global(partner);
+        records[ref_tet(partner)]->neighbor[static_cast<std::size_t>(ref_face(partner))] =
             global(self);
       }
     }
@@ -609,14 +613,18 @@ class TetReplacement {
   std::vector<int> copy_of_;
   std::vector<int> source_old_;
   std::vector<char> boundary_used_;
-  // kOtherTwo[a][g]: the two positions of a tetrahedron other than a and g (a != g).
-  static constexpr std::array<std::array<std::array<std::size_t, 2>, 4>, 4> kOtherTwo{{
-      {{{0, 0}, {2, 3}, {1, 3}, {1, 2}}},
-      {{{2, 3}, {0, 0}, {0, 3}, {0, 2}}},
-      {{{1, 3}, {0, 3}, {0, 0}, {0, 1}}},
-      {{{1, 2}, {0, 2}, {0, 1}, {0, 0}}},
+  // kOtherFaces[a]: for each position g != a, g and the two positions other than a and g.
+  struct OtherFace {
+    std::size_t g, u, w;
+  };
+  static constexpr std::array<std::array<OtherFace, 3>, 4> kOtherFaces{{
+      {{{1, 2, 3}, {2, 1, 3}, {3, 1, 2}}},
+      {{{0, 2, 3}, {2, 0, 3}, {3, 0, 2}}},
+      {{{0, 1, 3}, {1, 0, 3}, {3, 0, 1}}},
+      {{{0, 1, 2}, {1, 0, 2}, {2, 0, 1}}},
   }};
-  CavityEdges edges_;  // replace_cavity's scratch
+  std::vector<Tet*> fresh_records_;  // replace_cavity's: the new tetrahedra's records
+  CavityEdges edges_;                // replace_cavity's scratch
 };
 
 }  // namespace dtlab::engine

@@ -179,11 +179,18 @@ void name_duplicates_by_lowest_index(const std::vector<Point3>& input,
   }
 }
 
+// Every coordinate times 2^exponent, for a lossless scaling (RangeScaling::lossless: every result
+// a normal double) and its inverse: two multiplications by powers of two that are normal doubles
+// (|exponent| <= 1200, so each half is), and exact, since every value between c and c 2^exponent
+// keeps c's significand and lies in the range of doubles. The same numbers as std::ldexp, which
+// as a library call per coordinate took 0.6 % of a sequential walk's run at a million points.
 void scale_points(std::vector<Point3>& points, int exponent, int threads) {
+  const double first = std::ldexp(1.0, exponent / 2);
+  const double second = std::ldexp(1.0, exponent - exponent / 2);
   in_parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       Point3& p = points[i];
-      p = {std::ldexp(p.x, exponent), std::ldexp(p.y, exponent), std::ldexp(p.z, exponent)};
+      p = {(p.x * first) * second, (p.y * first) * second, (p.z * first) * second};
     }
   });
 }

@@ -1,0 +1,33 @@
+// The per-insertion phase clock (engine/src/phase_clock.hpp): its ticks, converted at the rate it
+// measured, give the seconds that steady_clock gives for the same interval, and an interval read
+// backwards counts zero. Bounds wide enough for a loaded 2-core machine: this checks the
+// conversion (a wrong rate is off by a factor of the clock's frequency in GHz, or more), not speed.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "phase_clock.hpp"
+
+namespace dtlab::test {
+namespace {
+
+using engine::PhaseClock;
+
+TEST(PhaseClock, TicksConvertToTheSecondsOfTheSteadyClock) {
+  using Clock = std::chrono::steady_clock;
+  for (const int milliseconds : {20, 60}) {
+    const Clock::time_point wall_start = Clock::now();
+    const PhaseClock::Ticks start = PhaseClock::now();
+    std::this_thread::sleep_for(std::chrono::milliseconds(milliseconds));
+    const PhaseClock::Ticks end = PhaseClock::now();
+    const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();
+    const double measured = PhaseClock::seconds(start, end);
+    EXPECT_GE(measured, 0.9 * milliseconds / 1000.0) << milliseconds;
+    EXPECT_LE(measured, 1.1 * wall + 1e-3) << milliseconds;
+    EXPECT_EQ(PhaseClock::seconds(end, start), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace dtlab::test
