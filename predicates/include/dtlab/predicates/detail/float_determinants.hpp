@@ -155,22 +155,17 @@ inline double insphere_det(const Point3& a, const Point3& b, const Point3& c, co
 }
 
 #if defined(__SSE2__)
-// insphere_evaluate<kSemiStaticFirst>'s first try, two values at a time in SSE2's two lanes: the
-// determinant and the semi-static bound, or decided = false where the bound does not decide (or
-// the window excludes it). Each lane makes the scalar evaluation's operations on its values in
-// the same order (IEEE arithmetic is the same per lane), so det is insphere_det's, bit for bit,
-// and the error analysis of docs/predicates.md holds unchanged; only the maxima of the semi-static
-// bound are taken in another order, which does not change a maximum. About 90 instructions where
-// the scalar code takes about 230 (it runs out of registers); a walk-mode run makes about 45 of
-// these calls a point.
-struct SemiStaticTry {
-  double det;
-  double bound;
-  bool decided;
-};
-
-inline SemiStaticTry insphere_semi_static_packed(const Point3& a, const Point3& b, const Point3& c,
-                                                 const Point3& d, const Point3& e) {
+// insphere_evaluate<kSemiStaticFirst>, two values at a time in SSE2's two lanes. Each lane makes
+// the scalar evaluation's operations on its values in the same order (IEEE arithmetic is the same
+// per lane), so the determinant, the permanent, the underflow term and both bounds are the scalar
+// ones bit for bit and the error analysis of docs/predicates.md holds unchanged; only the maxima
+// of the semi-static bound are taken in another order, which does not change a maximum. About 90
+// instructions to the semi-static verdict and 40 more to the permanent's, where the scalar code
+// takes about 230 and 310 (it runs out of registers); a walk-mode run makes about 45 of these
+// calls a point.
+inline FilteredValue insphere_packed_semi_static_first(const Point3& a, const Point3& b,
+                                                       const Point3& c, const Point3& d,
+                                                       const Point3& e) {
   // Lanes (row 0, row 1) and (row 2, row 3) of x, y, z relative to e, and their lifts.
   const __m128d ex = _mm_set1_pd(e.x), ey = _mm_set1_pd(e.y), ez = _mm_set1_pd(e.z);
   const __m128d x01 = _mm_sub_pd(_mm_setr_pd(a.x, b.x), ex);
@@ -184,43 +179,70 @@ inline SemiStaticTry insphere_semi_static_packed(const Point3& a, const Point3& 
   };
   const __m128d l01 = lift(x01, y01, z01);
   const __m128d l23 = lift(x23, y23, z23);
-  // The six 2x2 minors of columns (u, v) over row pairs, as three lane pairs:
-  // (02, 13) = u01 v23 - u23 v01; (03, 12) = u01 v32 - u32 v01; (01, 23) = u02 v13 - u13 v02,
-  // minor ij = u_i v_j - u_j v_i as in the scalar code.
-  struct Minors {
-    __m128d m02_13, m03_12, m01_23;
+  // The twelve products u_i v_j of columns (u, v) as six lane pairs, in the three pairings of the
+  // rows: [0] (u0 v2, u1 v3) and (u2 v0, u3 v1), [1] (u0 v3, u1 v2) and (u3 v0, u2 v1), [2]
+  // (u0 v1, u2 v3) and (u1 v0, u3 v2). Minor ij = u_i v_j - u_j v_i and its permanent
+  // |u_i v_j| + |u_j v_i| as in the scalar code: lanes (02, 13), (03, 12) and (01, 23).
+  struct Products {
+    __m128d first[3];  // a C array: std::array would drop __m128d's alignment attribute
+    __m128d second[3];
   };
-  auto minors = [](__m128d u01, __m128d u23, __m128d v01, __m128d v23) {
+  auto products = [](__m128d u01, __m128d u23, __m128d v01, __m128d v23) {
     const __m128d u32 = _mm_shuffle_pd(u23, u23, 1), v32 = _mm_shuffle_pd(v23, v23, 1);
     const __m128d u02 = _mm_unpacklo_pd(u01, u23), u13 = _mm_unpackhi_pd(u01, u23);
     const __m128d v02 = _mm_unpacklo_pd(v01, v23), v13 = _mm_unpackhi_pd(v01, v23);
-    return Minors{_mm_sub_pd(_mm_mul_pd(u01, v23), _mm_mul_pd(u23, v01)),
-                  _mm_sub_pd(_mm_mul_pd(u01, v32), _mm_mul_pd(u32, v01)),
-                  _mm_sub_pd(_mm_mul_pd(u02, v13), _mm_mul_pd(u13, v02))};
+    return Products{{_mm_mul_pd(u01, v23), _mm_mul_pd(u01, v32), _mm_mul_pd(u02, v13)},
+                    {_mm_mul_pd(u23, v01), _mm_mul_pd(u32, v01), _mm_mul_pd(u13, v02)}};
   };
-  const Minors m = minors(x01, x23, y01, y23);
-  const Minors n = minors(z01, z23, l01, l23);
+  const Products xy = products(x01, x23, y01, y23);
+  const Products zl = products(z01, z23, l01, l23);
   auto swapped = [](__m128d v) { return _mm_shuffle_pd(v, v, 1); };
-  // (m02 n13, m13 n02), (m01 n23, m23 n01), (m03 n12, m12 n03).
-  const __m128d p1 = _mm_mul_pd(m.m02_13, swapped(n.m02_13));
-  const __m128d p2 = _mm_mul_pd(m.m01_23, swapped(n.m01_23));
-  const __m128d p3 = _mm_mul_pd(m.m03_12, swapped(n.m03_12));
+  auto low = [](__m128d v) { return _mm_cvtsd_f64(v); };
+  auto high = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+  // Pairing k of the 4x4 determinant: (m_02 n_13, m_13 n_02), (m_03 n_12, m_12 n_03),
+  // (m_01 n_23, m_23 n_01), each minor times its complement.
+  __m128d terms[3];
+  for (std::size_t k = 0; k < 3; ++k) {
+    const __m128d m = _mm_sub_pd(xy.first[k], xy.second[k]);
+    const __m128d n = _mm_sub_pd(zl.first[k], zl.second[k]);
+    terms[k] = _mm_mul_pd(m, swapped(n));
+  }
   // (m01 n23 + m23 n01, m03 n12 + m12 n03) in one addition.
-  const __m128d s23 = _mm_add_pd(_mm_unpacklo_pd(p2, p3), _mm_unpackhi_pd(p2, p3));
-  const double s1 = _mm_cvtsd_f64(_mm_add_sd(p1, _mm_unpackhi_pd(p1, p1)));
-  const double det = s1 - _mm_cvtsd_f64(_mm_add_sd(s23, _mm_unpackhi_pd(s23, s23)));
+  const __m128d sums =
+      _mm_add_pd(_mm_unpacklo_pd(terms[2], terms[1]), _mm_unpackhi_pd(terms[2], terms[1]));
+  const double det = (low(terms[0]) + high(terms[0])) - (low(sums) + high(sums));
+
   // Lemma 5's maxima over the four rows.
   const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFF));
+  auto absolute = [&](__m128d v) { return _mm_and_pd(v, magnitude); };
   auto axis_max = [&](__m128d v01, __m128d v23) {
-    const __m128d both = _mm_max_pd(_mm_and_pd(v01, magnitude), _mm_and_pd(v23, magnitude));
+    const __m128d both = _mm_max_pd(absolute(v01), absolute(v23));
     return _mm_cvtsd_f64(_mm_max_sd(both, _mm_unpackhi_pd(both, both)));
   };
   const double mx = axis_max(x01, x23), my = axis_max(y01, y23), mz = axis_max(z01, z23);
-  const double low = std::min(mx, std::min(my, mz));
-  const double high = std::max(mx, std::max(my, mz));
-  if (!(low >= 0x1p-105 && high <= 0x1p105)) return {det, 0.0, false};
-  const double bound = kStaticInsphere * (((mx * my) * mz) * (high * high));
-  return {det, bound, std::fabs(det) > bound};
+  const double smallest = std::min(mx, std::min(my, mz));
+  const double largest = std::max(mx, std::max(my, mz));
+  if (smallest >= 0x1p-105 && largest <= 0x1p105) {
+    const double bound = kStaticInsphere * (((mx * my) * mz) * (largest * largest));
+    if (std::fabs(det) > bound) return {det, bound, 0.0, 0.0};
+  }
+
+  // The permanent's bound: ((pm02 pn13 + pm13 pn02) + (pm01 pn23 + pm23 pn01)) + (pm03 pn12 +
+  // pm12 pn03) and Lemma 4's term with the lifts' sum, as in insphere_evaluate.
+  __m128d magnitudes[3];
+  for (std::size_t k = 0; k < 3; ++k) {
+    const __m128d pm = _mm_add_pd(absolute(xy.first[k]), absolute(xy.second[k]));
+    const __m128d pn = _mm_add_pd(absolute(zl.first[k]), absolute(zl.second[k]));
+    magnitudes[k] = _mm_mul_pd(pm, swapped(pn));
+  }
+  const double permanent =
+      ((low(magnitudes[0]) + high(magnitudes[0])) + (low(magnitudes[2]) + high(magnitudes[2]))) +
+      (low(magnitudes[1]) + high(magnitudes[1]));
+  // ((lift0 + lift1) + (lift2 + lift3)) + 1
+  const __m128d lift_pairs = _mm_add_pd(_mm_unpacklo_pd(l01, l23), _mm_unpackhi_pd(l01, l23));
+  const double r1 = (low(lift_pairs) + high(lift_pairs)) + 1.0;
+  const double underflow = (96.0 * bounds::kUnderflowUnit) * (r1 * r1);
+  return {det, bounds::kInsphereA * permanent + underflow, permanent, underflow};
 }
 #endif
 
@@ -230,9 +252,7 @@ inline FilteredValue insphere_float_semi_static_first(const Point3& a, const Poi
                                                       const Point3& c, const Point3& d,
                                                       const Point3& e) {
 #if defined(__SSE2__)
-  const SemiStaticTry first = insphere_semi_static_packed(a, b, c, d, e);
-  if (first.decided) return {first.det, first.bound, 0.0, 0.0};
-  return insphere_evaluate<InsphereBound::kPermanent>(a, b, c, d, e);  // the same det
+  return insphere_packed_semi_static_first(a, b, c, d, e);
 #else
   return insphere_evaluate<InsphereBound::kSemiStaticFirst>(a, b, c, d, e);
 #endif
