@@ -313,6 +313,13 @@ TEST(InsphereDoubleWord, LargeExactTiesGoToTheExpansion) {
 // Lemma 8: stage A's value proves a tie on a grid. The rule at its threshold, then on real exact
 // inputs: whenever it says 0, GMP says 0 (orient3d, degree 3, and insphere, degree 5), and ties
 // of scaled lattices are decided 0 in stage B.
+// The certificates' threshold 2^k from its bits is ldexp's, normal, subnormal, 0 and infinite.
+TEST(GridCertificate, PowerOfTwoIsLdexps) {
+  for (int k = -1200; k <= 1200; ++k) {
+    EXPECT_EQ(detail::power_of_two(k), std::ldexp(1.0, k)) << k;
+  }
+}
+
 TEST(GridCertificate, StageAThreshold) {
   for (const int g : {0, 7, -30}) {
     for (const int degree : {3, 5}) {

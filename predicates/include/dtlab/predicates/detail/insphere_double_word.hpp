@@ -52,7 +52,7 @@ inline int insphere_exact_rows_sign(const std::array<RoundedRow, 4>& rows, doubl
   if (size > 2.0 * error) return (value > 0.0) - (value < 0.0);
   const int g = common_power_of_two(rows);
   if (g == kAllZero) return 0;
-  if (2.0 * size + 2.0 * error < std::ldexp(1.0, 5 * g)) return 0;
+  if (2.0 * size + 2.0 * error < power_of_two(5 * g)) return 0;
   return kRowsUndecided;
 }
 
