@@ -370,14 +370,17 @@ TEST(Stages, InsphereTriesTheSemiStaticBoundFirst) {
   EXPECT_EQ(AdaptiveKernel::insphere(far, b, c, d, e), ExactKernel::insphere(far, b, c, d, e));
 }
 
-// The semi-static first try in two lanes (SSE2) is the scalar evaluation: the same determinant bit
-// for bit, the same bound, and the same verdict, on points of every magnitude from 2^-1000 to
+// The evaluations in two lanes (SSE2) are the scalar ones, in each of the three modes (determinant
+// alone, the permanent's bound, the semi-static bound first): the same determinant bit for bit,
+// the same bounds and permanent, and the same verdict, on points of every magnitude from 2^-1000 to
 // 2^1000 (mixed within one call: differences that overflow, products that underflow, both sides
 // of the semi-static window), on cospherical and repeated points (exact zeros, ties), and where
 // one axis is flat.
-TEST(Stages, PackedSemiStaticTryIsTheScalarEvaluation) {
+TEST(Stages, PackedEvaluationIsTheScalarOne) {
   using predicates::detail::FilteredValue;
+  using predicates::detail::insphere_det;
   using predicates::detail::insphere_evaluate;
+  using predicates::detail::insphere_float;
   using predicates::detail::insphere_float_semi_static_first;
   using predicates::detail::InsphereBound;
   std::mt19937_64 random(11);
@@ -407,6 +410,15 @@ TEST(Stages, PackedSemiStaticTryIsTheScalarEvaluation) {
     ASSERT_TRUE(same(first.permanent, scalar.permanent)) << i;
     ASSERT_TRUE(same(first.underflow, scalar.underflow)) << i;
     if (first.permanent == 0.0 && std::fabs(first.det) > first.bound) ++decided;
+    // The other two modes (the fast kernel's determinant alone, stage A with the permanent).
+    const FilteredValue permanent_scalar =
+        insphere_evaluate<InsphereBound::kPermanent>(p[0], p[1], p[2], p[3], p[4]);
+    const FilteredValue permanent = insphere_float(p[0], p[1], p[2], p[3], p[4]);
+    ASSERT_TRUE(same(permanent.det, scalar.det)) << i;
+    ASSERT_TRUE(same(permanent.bound, permanent_scalar.bound)) << i;
+    ASSERT_TRUE(same(permanent.permanent, permanent_scalar.permanent)) << i;
+    ASSERT_TRUE(same(permanent.underflow, permanent_scalar.underflow)) << i;
+    ASSERT_TRUE(same(insphere_det(p[0], p[1], p[2], p[3], p[4]), scalar.det)) << i;
   }
   // The comparison covered both paths (42,208 of the 200,000 calls decided by the semi-static
   // bound with this seed).

@@ -143,19 +143,8 @@ inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const P
   return {det, bounds::kInsphereA * permanent + underflow, permanent, underflow};
 }
 
-inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Point3& c,
-                                    const Point3& d, const Point3& e) {
-  return insphere_evaluate<InsphereBound::kPermanent>(a, b, c, d, e);
-}
-
-// insphere_float's determinant alone.
-inline double insphere_det(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                           const Point3& e) {
-  return insphere_evaluate<InsphereBound::kNone>(a, b, c, d, e).det;
-}
-
 #if defined(__SSE2__)
-// insphere_evaluate<kSemiStaticFirst>, two values at a time in SSE2's two lanes. Each lane makes
+// insphere_evaluate, two values at a time in SSE2's two lanes. Each lane makes
 // the scalar evaluation's operations on its values in the same order (IEEE arithmetic is the same
 // per lane), so the determinant, the permanent, the underflow term and both bounds are the scalar
 // ones bit for bit and the error analysis of docs/predicates.md holds unchanged; only the maxima
@@ -163,9 +152,9 @@ inline double insphere_det(const Point3& a, const Point3& b, const Point3& c, co
 // instructions to the semi-static verdict and 40 more to the permanent's, where the scalar code
 // takes about 230 and 310 (it runs out of registers); a walk-mode run makes about 45 of these
 // calls a point.
-inline FilteredValue insphere_packed_semi_static_first(const Point3& a, const Point3& b,
-                                                       const Point3& c, const Point3& d,
-                                                       const Point3& e) {
+template <InsphereBound kBound>
+inline FilteredValue insphere_packed(const Point3& a, const Point3& b, const Point3& c,
+                                     const Point3& d, const Point3& e) {
   // Lanes (row 0, row 1) and (row 2, row 3) of x, y, z relative to e, and their lifts.
   const __m128d ex = _mm_set1_pd(e.x), ey = _mm_set1_pd(e.y), ez = _mm_set1_pd(e.z);
   const __m128d x01 = _mm_sub_pd(_mm_setr_pd(a.x, b.x), ex);
@@ -211,6 +200,7 @@ inline FilteredValue insphere_packed_semi_static_first(const Point3& a, const Po
   const __m128d sums =
       _mm_add_pd(_mm_unpacklo_pd(terms[2], terms[1]), _mm_unpackhi_pd(terms[2], terms[1]));
   const double det = (low(terms[0]) + high(terms[0])) - (low(sums) + high(sums));
+  if constexpr (kBound == InsphereBound::kNone) return {det, 0.0, 0.0, 0.0};
 
   // Lemma 5's maxima over the four rows.
   const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFF));
@@ -219,12 +209,14 @@ inline FilteredValue insphere_packed_semi_static_first(const Point3& a, const Po
     const __m128d both = _mm_max_pd(absolute(v01), absolute(v23));
     return _mm_cvtsd_f64(_mm_max_sd(both, _mm_unpackhi_pd(both, both)));
   };
-  const double mx = axis_max(x01, x23), my = axis_max(y01, y23), mz = axis_max(z01, z23);
-  const double smallest = std::min(mx, std::min(my, mz));
-  const double largest = std::max(mx, std::max(my, mz));
-  if (smallest >= 0x1p-105 && largest <= 0x1p105) {
-    const double bound = kStaticInsphere * (((mx * my) * mz) * (largest * largest));
-    if (std::fabs(det) > bound) return {det, bound, 0.0, 0.0};
+  if constexpr (kBound == InsphereBound::kSemiStaticFirst) {
+    const double mx = axis_max(x01, x23), my = axis_max(y01, y23), mz = axis_max(z01, z23);
+    const double smallest = std::min(mx, std::min(my, mz));
+    const double largest = std::max(mx, std::max(my, mz));
+    if (smallest >= 0x1p-105 && largest <= 0x1p105) {
+      const double bound = kStaticInsphere * (((mx * my) * mz) * (largest * largest));
+      if (std::fabs(det) > bound) return {det, bound, 0.0, 0.0};
+    }
   }
 
   // The permanent's bound: ((pm02 pn13 + pm13 pn02) + (pm01 pn23 + pm23 pn01)) + (pm03 pn12 +
@@ -246,16 +238,36 @@ inline FilteredValue insphere_packed_semi_static_first(const Point3& a, const Po
 }
 #endif
 
+// The kernels' entry points: the packed evaluation where there is SSE2, else the scalar one (the
+// same values).
+template <InsphereBound kBound>
+inline FilteredValue insphere_float_with(const Point3& a, const Point3& b, const Point3& c,
+                                         const Point3& d, const Point3& e) {
+#if defined(__SSE2__)
+  return insphere_packed<kBound>(a, b, c, d, e);
+#else
+  return insphere_evaluate<kBound>(a, b, c, d, e);
+#endif
+}
+
+// Stage A of insphere: the determinant with the permanent's bound.
+inline FilteredValue insphere_float(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d, const Point3& e) {
+  return insphere_float_with<InsphereBound::kPermanent>(a, b, c, d, e);
+}
+
+// insphere_float's determinant alone.
+inline double insphere_det(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                           const Point3& e) {
+  return insphere_float_with<InsphereBound::kNone>(a, b, c, d, e).det;
+}
+
 // insphere_float, whose bound is the semi-static one where that decides (|det| > bound; then
 // permanent and underflow are not computed), else the permanent's.
 inline FilteredValue insphere_float_semi_static_first(const Point3& a, const Point3& b,
                                                       const Point3& c, const Point3& d,
                                                       const Point3& e) {
-#if defined(__SSE2__)
-  return insphere_packed_semi_static_first(a, b, c, d, e);
-#else
-  return insphere_evaluate<InsphereBound::kSemiStaticFirst>(a, b, c, d, e);
-#endif
+  return insphere_float_with<InsphereBound::kSemiStaticFirst>(a, b, c, d, e);
 }
 
 // orient2d in the projection that drops `drop`: det[b - a; c - a] of the kept coordinates
