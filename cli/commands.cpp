@@ -250,12 +250,11 @@ int run_triangulate(const TriangulateArgs& args) {
 }
 
 int run_validate(const std::string& points_path, const std::string& mesh,
-                 engine::ValidateWith kernel) {
+                 engine::ValidateWith kernel, int threads) {
   const auto points = io::read_points(points_path);
   const int base = io::node_index_base(points_path);
   const auto tets = io::read_ele(mesh, points.size(), base);
-  const engine::ValidationReport report =
-      engine::validate(points, tets, kernel, engine::kAllThreads);
+  const engine::ValidationReport report = engine::validate(points, tets, kernel, threads);
   std::cout << report.json() << "\n";
   return report.valid() ? 0 : 1;
 }

@@ -23,7 +23,9 @@ int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed,
                  const std::string& output);
 int run_info(const std::string& input, std::uint64_t seed);
 int run_triangulate(const TriangulateArgs& args);
-int run_validate(const std::string& points, const std::string& mesh, engine::ValidateWith kernel);
+// threads: engine::kAllThreads for one per hardware thread.
+int run_validate(const std::string& points, const std::string& mesh, engine::ValidateWith kernel,
+                 int threads);
 int run_repair(const std::string& points, const std::string& mesh, const std::string& output,
                const std::string& stats, bool validate);
 int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel);

@@ -124,6 +124,12 @@ int main(int argc, char** argv) {
       ->add_option("--validate-with", validate_kernel,
                    "the validator's kernel: adaptive (default) | exact (GMP, independent)")
       ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
+  int validate_threads = dtlab::engine::kAllThreads;
+  validate
+      ->add_option("--threads", validate_threads,
+                   "threads that share the checks (default: one per hardware thread; the report "
+                   "is the same for every count)")
+      ->check(CLI::Range(1, 1024));
 
   std::string repair_output;
   std::string repair_stats;
@@ -199,7 +205,9 @@ int main(int argc, char** argv) {
                                                    : dtlab::engine::Repair::None;
       return dtlab::cli::run_triangulate(targs);
     }
-    if (*validate) return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel);
+    if (*validate) {
+      return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel, validate_threads);
+    }
     if (*repair_cmd) {
       return dtlab::cli::run_repair(points_path, mesh_path, repair_output, repair_stats,
                                     repair_validate);

@@ -6,6 +6,15 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 "$dtlab" triangulate grid:1000 -o "$dir/g.ele" --validate >/dev/null
 "$dtlab" validate "$dir/g.node" "$dir/g.ele" >/dev/null
+# --threads: the same report for 1 and 3 threads; 0 is refused (exit 2).
+one=$("$dtlab" validate "$dir/g.node" "$dir/g.ele" --threads 1)
+three=$("$dtlab" validate "$dir/g.node" "$dir/g.ele" --threads 3)
+if [ "$one" != "$three" ]; then echo "validate --threads changed the report"; exit 1; fi
+set +e
+"$dtlab" validate "$dir/g.node" "$dir/g.ele" --threads 0 >/dev/null 2>&1
+code=$?
+set -e
+if [ "$code" -ne 2 ]; then echo "validate --threads 0: exit $code, expected 2"; exit 1; fi
 "$dtlab" triangulate sphere:2000 -o "$dir/s.vtu" --validate >/dev/null
 grep -q 'Name="non_delaunay"' "$dir/s.vtu"
 "$dtlab" triangulate uniform:2000 --stats - | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["tetrahedra"] > 0 and d["inserted"] == 2000, d'

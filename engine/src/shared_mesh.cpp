@@ -50,11 +50,12 @@ std::vector<Tetrahedron> SharedMesh::collect(
       for (auto& v : t) v = representative[v];
     }
   };
-  if (parts == 1) {
+  if (parts == 1 && !tets.has_children()) {
     // One thread: one pass, into room for every slot (reserved, so untouched beyond what the
     // kept tetrahedra fill). Two passes, counting first, are what lets threads write their
     // shares in place; alone they read the store twice (about 1 % of a sequential walk's run at
-    // a million points).
+    // a million points). Not in DAG mode, where most slots are dead history and room for all
+    // of them would be a reservation some 8 times the output.
     std::vector<Tetrahedron> out;
     out.reserve(n);
     for (std::size_t block = 0; block < blocks; ++block) {
