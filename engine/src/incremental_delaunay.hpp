@@ -78,6 +78,7 @@ class IncrementalDelaunay {
     if (options.max_tetrahedra > 0) mesh_.tets.set_capacity(options.max_tetrahedra);
     mesh_.tets.keep_children(!walk_);
     mesh_.tets.keep_lock_words(Sync::kLocks);
+    PhaseClock::calibrate();  // here, not inside the first insertion's phases
   }
 
   // One inserting thread of a parallel method, on a shared mesh.
@@ -96,7 +97,9 @@ class IncrementalDelaunay {
         replacement_(mesh_, *sync_, slots_, !recycle_),
         locator_(mesh_, options, geometry_, walk_, recycle_, true, Sync::kLocks),
         cavity_search_(mesh_, geometry_, *sync_, verify_cavities(options)),
-        cavity_(options.insertion == Insertion::Cavity && recycle_) {}
+        cavity_(options.insertion == Insertion::Cavity && recycle_) {
+    PhaseClock::calibrate();
+  }
 
   // Builds the first tetrahedron abcd (affinely independent) and its four infinite neighbours.
   void start(VertexId a, VertexId b, VertexId c, VertexId d) {

@@ -2,6 +2,7 @@
 // The engine's orientation and insphere tests on the shared mesh, with the vertex at infinity
 // (an orientation with it is minus the orientation with the interior point O: see
 // incremental_delaunay.hpp), counted in predicate_calls. One object per inserting thread.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -22,9 +23,12 @@ class MeshGeometry {
 
   int orient(const Quad& q) {
     ++predicate_calls_;
+    // kInfiniteVertex is the largest id (as in in_conflict): no branch per vertex.
+    if (std::max(std::max(q[0], q[1]), std::max(q[2], q[3])) != kInfiniteVertex) [[likely]] {
+      return K::orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
+    }
     int inf = 3;
-    while (inf >= 0 && q[static_cast<std::size_t>(inf)] != kInfiniteVertex) --inf;
-    if (inf < 0) return K::orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
+    while (q[static_cast<std::size_t>(inf)] != kInfiniteVertex) --inf;
     // orient(q) = -orient(q with inf -> O); move O to the last slot (a swap: one more sign).
     Quad r = q;
     std::swap(r[static_cast<std::size_t>(inf)], r[3]);

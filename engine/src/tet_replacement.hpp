@@ -208,9 +208,11 @@ class TetReplacement {
       for (const TetId o : scratch_old_) sync_.before_write(o);
     }
     std::array<TetId, 4> ids{};
+    std::array<Tet*, 4> records{};  // looked up once: each is written twice
     for (std::size_t j = 0; j < count; ++j) {
       ids[j] = slots_.allocate();
-      Tet& fresh = mesh_.tets[ids[j]];
+      records[j] = &mesh_.tets[ids[j]];
+      Tet& fresh = *records[j];
       fresh.vertex = tet.vertex;
       fresh.vertex[static_cast<std::size_t>(positions[j])] = put;
       if (dag_) {
@@ -221,7 +223,7 @@ class TetReplacement {
     // The new tetrahedra's own references first, then the outside's references to them
     // (release): a walking thread that reaches a new tetrahedron finds all four set.
     for (std::size_t j = 0; j < count; ++j) {
-      Tet& fresh = mesh_.tets[ids[j]];
+      Tet& fresh = *records[j];
       for (int f = 0; f < 4; ++f) {
         const FaceMatch l = link[j][static_cast<std::size_t>(f)];
         store_neighbor(fresh, f, l.is_new ? face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)) : l.ref);

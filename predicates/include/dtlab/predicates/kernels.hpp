@@ -59,7 +59,7 @@ struct FastKernel {
   }
   static int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                       const Point3& e) {
-    return detail::sign_of(detail::insphere_float(a, b, c, d, e).det);
+    return detail::sign_of(detail::insphere_det(a, b, c, d, e));  // no bound computed
   }
   static int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
     return detail::sign_of(detail::orient2d_float(a, b, c, drop).det);

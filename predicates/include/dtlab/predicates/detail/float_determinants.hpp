@@ -144,17 +144,27 @@ inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const P
 }
 
 #if defined(__SSE2__)
-// insphere_evaluate, two values at a time in SSE2's two lanes. Each lane makes
-// the scalar evaluation's operations on its values in the same order (IEEE arithmetic is the same
-// per lane), so the determinant, the permanent, the underflow term and both bounds are the scalar
-// ones bit for bit and the error analysis of docs/predicates.md holds unchanged; only the maxima
-// of the semi-static bound are taken in another order, which does not change a maximum. About 90
-// instructions to the semi-static verdict and 40 more to the permanent's, where the scalar code
-// takes about 230 and 310 (it runs out of registers); a walk-mode run makes about 45 of these
-// calls a point.
-template <InsphereBound kBound>
-inline FilteredValue insphere_packed(const Point3& a, const Point3& b, const Point3& c,
-                                     const Point3& d, const Point3& e) {
+// insphere_evaluate, two values at a time in SSE2's two lanes. Each lane makes the scalar
+// evaluation's operations on its values in the same order (IEEE arithmetic is the same per lane),
+// so the determinant, the permanent, the underflow term and both bounds are the scalar ones bit for
+// bit and the error analysis of docs/predicates.md holds unchanged; only the maxima of the
+// semi-static bound are taken in another order, which does not change a maximum. The scalar code
+// runs out of registers (half its instructions were moves).
+//
+// The core: the determinant, and with kAxes the axes' maxima (Lemma 5), with kPermanent the
+// permanent and Lemma 4's term.
+struct PackedInsphere {
+  double det = 0.0;
+  double mx = 0.0, my = 0.0, mz = 0.0;
+  double permanent = 0.0;
+  double underflow = 0.0;
+};
+
+template <bool kAxes, bool kPermanent>
+[[gnu::always_inline]] inline PackedInsphere insphere_packed_core(const Point3& a, const Point3& b,
+                                                                  const Point3& c, const Point3& d,
+                                                                  const Point3& e) {
+  PackedInsphere r;
   // Lanes (row 0, row 1) and (row 2, row 3) of x, y, z relative to e, and their lifts.
   const __m128d ex = _mm_set1_pd(e.x), ey = _mm_set1_pd(e.y), ez = _mm_set1_pd(e.z);
   const __m128d x01 = _mm_sub_pd(_mm_setr_pd(a.x, b.x), ex);
@@ -199,42 +209,66 @@ inline FilteredValue insphere_packed(const Point3& a, const Point3& b, const Poi
   // (m01 n23 + m23 n01, m03 n12 + m12 n03) in one addition.
   const __m128d sums =
       _mm_add_pd(_mm_unpacklo_pd(terms[2], terms[1]), _mm_unpackhi_pd(terms[2], terms[1]));
-  const double det = (low(terms[0]) + high(terms[0])) - (low(sums) + high(sums));
-  if constexpr (kBound == InsphereBound::kNone) return {det, 0.0, 0.0, 0.0};
+  r.det = (low(terms[0]) + high(terms[0])) - (low(sums) + high(sums));
 
-  // Lemma 5's maxima over the four rows.
   const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFF));
   auto absolute = [&](__m128d v) { return _mm_and_pd(v, magnitude); };
-  auto axis_max = [&](__m128d v01, __m128d v23) {
-    const __m128d both = _mm_max_pd(absolute(v01), absolute(v23));
-    return _mm_cvtsd_f64(_mm_max_sd(both, _mm_unpackhi_pd(both, both)));
-  };
-  if constexpr (kBound == InsphereBound::kSemiStaticFirst) {
-    const double mx = axis_max(x01, x23), my = axis_max(y01, y23), mz = axis_max(z01, z23);
-    const double smallest = std::min(mx, std::min(my, mz));
-    const double largest = std::max(mx, std::max(my, mz));
-    if (smallest >= 0x1p-105 && largest <= 0x1p105) {
-      const double bound = kStaticInsphere * (((mx * my) * mz) * (largest * largest));
-      if (std::fabs(det) > bound) return {det, bound, 0.0, 0.0};
+  if constexpr (kAxes) {  // Lemma 5's maxima over the four rows
+    auto axis_max = [&](__m128d v01, __m128d v23) {
+      const __m128d both = _mm_max_pd(absolute(v01), absolute(v23));
+      return _mm_cvtsd_f64(_mm_max_sd(both, _mm_unpackhi_pd(both, both)));
+    };
+    r.mx = axis_max(x01, x23);
+    r.my = axis_max(y01, y23);
+    r.mz = axis_max(z01, z23);
+  }
+  if constexpr (kPermanent) {
+    // ((pm02 pn13 + pm13 pn02) + (pm01 pn23 + pm23 pn01)) + (pm03 pn12 + pm12 pn03), and Lemma
+    // 4's term with the lifts' sum, as in insphere_evaluate.
+    __m128d magnitudes[3];
+    for (std::size_t k = 0; k < 3; ++k) {
+      const __m128d pm = _mm_add_pd(absolute(xy.first[k]), absolute(xy.second[k]));
+      const __m128d pn = _mm_add_pd(absolute(zl.first[k]), absolute(zl.second[k]));
+      magnitudes[k] = _mm_mul_pd(pm, swapped(pn));
     }
+    r.permanent =
+        ((low(magnitudes[0]) + high(magnitudes[0])) + (low(magnitudes[2]) + high(magnitudes[2]))) +
+        (low(magnitudes[1]) + high(magnitudes[1]));
+    // ((lift0 + lift1) + (lift2 + lift3)) + 1
+    const __m128d lift_pairs = _mm_add_pd(_mm_unpacklo_pd(l01, l23), _mm_unpackhi_pd(l01, l23));
+    const double r1 = (low(lift_pairs) + high(lift_pairs)) + 1.0;
+    r.underflow = (96.0 * bounds::kUnderflowUnit) * (r1 * r1);
   }
+  return r;
+}
 
-  // The permanent's bound: ((pm02 pn13 + pm13 pn02) + (pm01 pn23 + pm23 pn01)) + (pm03 pn12 +
-  // pm12 pn03) and Lemma 4's term with the lifts' sum, as in insphere_evaluate.
-  __m128d magnitudes[3];
-  for (std::size_t k = 0; k < 3; ++k) {
-    const __m128d pm = _mm_add_pd(absolute(xy.first[k]), absolute(xy.second[k]));
-    const __m128d pn = _mm_add_pd(absolute(zl.first[k]), absolute(zl.second[k]));
-    magnitudes[k] = _mm_mul_pd(pm, swapped(pn));
+// The permanent's stage A value, out of line: where the semi-static bound does not decide, the
+// products are computed again rather than kept alive through the semi-static try (kept, they
+// spilled registers on its path: 35 more instructions a call).
+[[gnu::noinline]] inline FilteredValue insphere_packed_with_permanent(
+    const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
+  const PackedInsphere r = insphere_packed_core<false, true>(a, b, c, d, e);
+  return {r.det, bounds::kInsphereA * r.permanent + r.underflow, r.permanent, r.underflow};
+}
+
+template <InsphereBound kBound>
+[[gnu::always_inline]] inline FilteredValue insphere_packed(const Point3& a, const Point3& b,
+                                                            const Point3& c, const Point3& d,
+                                                            const Point3& e) {
+  if constexpr (kBound == InsphereBound::kNone) {
+    return {insphere_packed_core<false, false>(a, b, c, d, e).det, 0.0, 0.0, 0.0};
+  } else if constexpr (kBound == InsphereBound::kPermanent) {
+    return insphere_packed_with_permanent(a, b, c, d, e);
+  } else {
+    const PackedInsphere r = insphere_packed_core<true, false>(a, b, c, d, e);
+    const double smallest = std::min(r.mx, std::min(r.my, r.mz));
+    const double largest = std::max(r.mx, std::max(r.my, r.mz));
+    if (smallest >= 0x1p-105 && largest <= 0x1p105) {
+      const double bound = kStaticInsphere * (((r.mx * r.my) * r.mz) * (largest * largest));
+      if (std::fabs(r.det) > bound) return {r.det, bound, 0.0, 0.0};
+    }
+    return insphere_packed_with_permanent(a, b, c, d, e);  // the same determinant
   }
-  const double permanent =
-      ((low(magnitudes[0]) + high(magnitudes[0])) + (low(magnitudes[2]) + high(magnitudes[2]))) +
-      (low(magnitudes[1]) + high(magnitudes[1]));
-  // ((lift0 + lift1) + (lift2 + lift3)) + 1
-  const __m128d lift_pairs = _mm_add_pd(_mm_unpacklo_pd(l01, l23), _mm_unpackhi_pd(l01, l23));
-  const double r1 = (low(lift_pairs) + high(lift_pairs)) + 1.0;
-  const double underflow = (96.0 * bounds::kUnderflowUnit) * (r1 * r1);
-  return {det, bounds::kInsphereA * permanent + underflow, permanent, underflow};
 }
 #endif
 
