@@ -6,12 +6,14 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 "$dtlab" triangulate grid:1000 -o "$dir/g.ele" --validate >/dev/null
 "$dtlab" validate "$dir/g.node" "$dir/g.ele" >/dev/null
-# --threads: the same report for 1 and 3 threads; 0 is refused (exit 2).
-one=$("$dtlab" validate "$dir/g.node" "$dir/g.ele" --threads 1)
-three=$("$dtlab" validate "$dir/g.node" "$dir/g.ele" --threads 3)
+# --threads: the same report for 1 and 3 threads, on a mesh large enough to be split (some
+# 33,000 tetrahedra; below 4,096 items a range runs on one thread); 0 is refused (exit 2).
+"$dtlab" triangulate uniform:5000 -o "$dir/u.ele" >/dev/null
+one=$("$dtlab" validate "$dir/u.node" "$dir/u.ele" --threads 1)
+three=$("$dtlab" validate "$dir/u.node" "$dir/u.ele" --threads 3)
 if [ "$one" != "$three" ]; then echo "validate --threads changed the report"; exit 1; fi
 set +e
-"$dtlab" validate "$dir/g.node" "$dir/g.ele" --threads 0 >/dev/null 2>&1
+"$dtlab" validate "$dir/u.node" "$dir/u.ele" --threads 0 >/dev/null 2>&1
 code=$?
 set -e
 if [ "$code" -ne 2 ]; then echo "validate --threads 0: exit $code, expected 2"; exit 1; fi

@@ -167,8 +167,9 @@ TEST(ParallelMethods, ConcurrentThreadsMapEachStoreBlockOnce) {
 // The steps over whole arrays before the first insertion and after the last (the BRIO order, the
 // points' renumbering and scaling, collecting the tetrahedra a few store blocks at a time, naming
 // them in input order) run on the method's threads: with several store blocks (65,536 slots
-// each) copied in groups of 2, 3, 4 and 5 blocks, one of which ends with a short group (the
-// block count is not a multiple of 60), duplicates to rename and the auxiliary
+// each) copied in groups of 2, 3, 4 and 5 blocks, one of which ends with a short group (one of
+// the four runs has a block count that its thread count does not divide), duplicates to rename
+// and the auxiliary
 // tetrahedron's vertices to leave out, the mesh is the sequential run's. (The mesh is unique, so
 // this does not see the order; InsertionOrder.TheOrderDoesNotDependOnTheThreadCount does.) The
 // two wall-clock parts are measured and are part of the total.
@@ -190,8 +191,8 @@ TEST(ParallelMethods, WholeArrayStepsOnThreadsGiveTheSequentialMesh) {
     const auto expected = engine::canonical_tetrahedra(sequential.tetrahedra);
     options.method = Method::OptimisticDetect;
     bool short_group = false;
-    // The slot count varies with the threads' interleaving: with 2 and 3 alone a run of 6 blocks
-    // for both (a multiple of each) left no short group, about 1 run in 25 under load.
+    // The slot count varies with the threads' interleaving: with 2 and 3 threads alone, runs of 6
+    // blocks each (a multiple of both counts) left no short group, about 1 time in 25 under load.
     for (const int threads : {2, 3, 4, 5}) {
       options.threads = threads;
       const auto parallel = engine::triangulate(points, options);

@@ -373,9 +373,9 @@ TEST(Stages, InsphereTriesTheSemiStaticBoundFirst) {
 // The evaluations in two lanes (SSE2) are the scalar ones, in each of the three modes (determinant
 // alone, the permanent's bound, the semi-static bound first): the same determinant bit for bit,
 // the same bounds and permanent, and the same verdict, on points of every magnitude from 2^-1000 to
-// 2^1000 (mixed within one call: differences that overflow, products that underflow, both sides
-// of the semi-static window), on cospherical and repeated points (exact zeros, ties), and where
-// one axis is flat.
+// 2^1000 (mixed within one call: products and lifts that overflow, products that underflow, both
+// sides of the semi-static window), on cospherical and repeated points (exact zeros, ties), and
+// where one axis is flat.
 TEST(Stages, PackedEvaluationIsTheScalarOne) {
   using predicates::detail::FilteredValue;
   using predicates::detail::insphere_det;

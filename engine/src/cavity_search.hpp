@@ -90,10 +90,13 @@ class CavitySearch {
  private:
   // t joins the cavity; its neighbours' records are fetched now, to be tested when t's turn
   // comes (the search's time goes mostly to first reads of the neighbours beyond the cavity).
-  // The boundary and the cavity grow by a store into memory kept from earlier insertions; only a
-  // larger one than any before grows its vector. (push_back was a call per entry, not inlined:
+  // The boundary and the cavity grow by a store (push_back was a call per entry, not inlined:
   // about 3 % of the optimistic methods' samples at 1M points for the boundary, 1.9 % of a
-  // sequential walk's instructions for the cavity.)
+  // sequential walk's instructions for the cavity). The boundary's vector is kept from earlier
+  // insertions, so only a larger boundary than any before grows it. The cavity's is not: the
+  // swap of move_cavity_to hands it to the replacement and takes back the replacement's emptied
+  // list, so each search grows it once from size 0 (its capacity is kept; the growth writes 64
+  // zeros, then more only for a larger cavity).
   void add_boundary(const CavityFace& face) {
     if (boundary_size_ == boundary_.size()) [[unlikely]] {
       boundary_.resize(2 * boundary_size_ + 64);

@@ -14,7 +14,7 @@
 #include <array>
 #include <cmath>
 
-#if defined(__SSE2__)
+#if defined(__x86_64__)
 #include <emmintrin.h>
 #endif
 
@@ -143,7 +143,7 @@ inline FilteredValue insphere_evaluate(const Point3& a, const Point3& b, const P
   return {det, bounds::kInsphereA * permanent + underflow, permanent, underflow};
 }
 
-#if defined(__SSE2__)
+#if defined(__x86_64__)
 // insphere_evaluate, two values at a time in SSE2's two lanes. Each lane makes the scalar
 // evaluation's operations on its values in the same order (IEEE arithmetic is the same per lane),
 // so the determinant, the permanent, the underflow term and both bounds are the scalar ones bit for
@@ -272,12 +272,13 @@ template <InsphereBound kBound>
 }
 #endif
 
-// The kernels' entry points: the packed evaluation where there is SSE2, else the scalar one (the
+// The kernels' entry points: the packed evaluation on x86-64 (SSE2 there is also the scalar
+// arithmetic), else the scalar one (the
 // same values).
 template <InsphereBound kBound>
 inline FilteredValue insphere_float_with(const Point3& a, const Point3& b, const Point3& c,
                                          const Point3& d, const Point3& e) {
-#if defined(__SSE2__)
+#if defined(__x86_64__)
   return insphere_packed<kBound>(a, b, c, d, e);
 #else
   return insphere_evaluate<kBound>(a, b, c, d, e);
