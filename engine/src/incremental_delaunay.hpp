@@ -259,12 +259,12 @@ class IncrementalDelaunay {
 
   // 1->4 inside, 2->6 on a face, k->2k on an edge; a point on a vertex is a duplicate.
   Outcome subdivide(TetId t, VertexId p, const std::array<int, 4>& o) {
-    replacement_.begin({});
     const int zeros = static_cast<int>(std::count(o.begin(), o.end(), 0));
     if (zeros == 0) {
-      replacement_.old_tets().push_back(t);
-      return finish_split(replacement_.replace_known(t, kNoTet, kNoTet, -1, p, {0, 1, 2, 3}, 4));
+      return finish_split(
+          replacement_.replace_known(t, kNoTet, kNoTet, -1, p, std::array<int, 4>{0, 1, 2, 3}));
     }
+    replacement_.begin({});
     if (zeros == 1) {
       const int i0 = static_cast<int>(std::find(o.begin(), o.end(), 0) - o.begin());
       const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(i0)];
@@ -533,13 +533,12 @@ class IncrementalDelaunay {
  private:
   // S23: abcp + abcy -> three tetrahedra around the new edge py.
   Flip flip23(TetId t, TetId t2, int ip, VertexId y) {
-    begin_flip({t, t2});
-    std::array<int, 4> positions{};
-    int n = 0;
+    std::array<int, 3> positions{};
+    std::size_t n = 0;
     for (int m = 0; m < 4; ++m) {
-      if (m != ip) positions[static_cast<std::size_t>(n++)] = m;
+      if (m != ip) positions[n++] = m;
     }
-    const Flip result = finish_flip(replacement_.replace_known(t, t2, kNoTet, ip, y, positions, n));
+    const Flip result = finish_flip(replacement_.replace_known(t, t2, kNoTet, ip, y, positions));
     if (result == Flip::Done) ++stats_.flips.s23;
     return result;
   }
@@ -553,13 +552,12 @@ class IncrementalDelaunay {
       return Flip::NotApplied;
     }
     if (!sync_->acquire(t3)) return Flip::GaveUp;
-    begin_flip({t, t2, t3});
-    std::array<int, 4> positions{};
-    int n = 0;
+    std::array<int, 2> positions{};
+    std::size_t n = 0;
     for (int j = 0; j < 4; ++j) {
-      if (j != ip && j != m) positions[static_cast<std::size_t>(n++)] = j;
+      if (j != ip && j != m) positions[n++] = j;
     }
-    const Flip result = finish_flip(replacement_.replace_known(t, t2, t3, ip, y, positions, n));
+    const Flip result = finish_flip(replacement_.replace_known(t, t2, t3, ip, y, positions));
     if (result == Flip::Done) ++stats_.flips.s32;
     return result;
   }

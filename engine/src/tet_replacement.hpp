@@ -120,125 +120,125 @@ class TetReplacement {
     return commit_replacement();
   }
 
-  // The three most frequent replacements, 1->4, S23 and S32, written directly: new tetrahedron
-  // j is t with the vertex at positions[j] replaced by `put`, and its faces follow from the
-  // adjacency alone, without matching keys. Two new tetrahedra made from t by replacing
-  // positions a and b share the face opposite b in the first and opposite a in the second; a new
-  // tetrahedron's face at its own replaced position is t's face there; its face opposite p (S23,
-  // S32) belongs to t2, across t's face ip, and its face opposite t[m] (S32) to t3, across t's
-  // face m; each is found by the vertex it lacks, t[a]. scratch_old_ holds the old tetrahedra.
+  // The three most frequent replacements, written directly: 1->4 (N = 4, old t), S23 (N = 3, old
+  // t and t2) and S32 (N = 2, old t, t2 and t3). New tetrahedron j is t with the vertex at
+  // positions[j] replaced by `put`, and its faces follow from the adjacency alone, without
+  // matching keys. Two new tetrahedra made from t by replacing positions a and b share the face
+  // opposite b in the first and opposite a in the second; a new tetrahedron's face at its own
+  // replaced position is t's face there; its face opposite p (S23, S32) belongs to t2, across t's
+  // face ip, and its face opposite t[m] (S32) to t3, across t's face m; each is found by the
+  // vertex it lacks, t[a]. N is a template argument so that every loop below has a known length
+  // (with a run-time count and a table of matches, this was 900 instructions per flip).
   // When the neighbourhood is not the textbook one (a broken mesh from an inexact kernel: the
   // vertex put in already in t, old tetrahedra not glued to each other both ways, or an outside
   // face that belongs to an old tetrahedron) the generic matching of replace() decides.
+  template <std::size_t N>
   Replaced replace_known(TetId t, TetId t2, TetId t3, int ip, VertexId put,
-                         const std::array<int, 4>& positions, int n) {
+                         const std::array<int, N>& positions) {
+    static_assert(N >= 2 && N <= 4);
+    constexpr std::size_t kOld = 5 - N;  // 1->4, 2->3, 3->2
+    const std::array<TetId, 3> old{t, t2, t3};
     const Tet& tet = mesh_.tets[t];
-    const auto count = static_cast<std::size_t>(n);
     auto generic = [&] {
+      scratch_old_.assign(old.begin(), old.begin() + kOld);
       scratch_new_.clear();
       scratch_parent_.clear();
       scratch_source_.clear();
-      for (std::size_t j = 0; j < count; ++j)
-        push_replaced(t, positions[j], put, t2 == kNoTet ? 0 : -1);
+      for (std::size_t j = 0; j < N; ++j) push_replaced(t, positions[j], put, kOld == 1 ? 0 : -1);
       return replace();
     };
     if (tet.index_of(put) >= 0) return generic();
-    int m = -1;
-    if (t2 != kNoTet) {
+    // The old tetrahedra other than t, and the face of t each lies across (ip, then m).
+    std::array<const Tet*, kOld - 1> others{};
+    std::array<int, kOld - 1> across{};
+    if constexpr (kOld >= 2) {
       const Tet& second = mesh_.tets[t2];
       const int put_at = second.index_of(put);
       if (put_at < 0 || second.neighbor[static_cast<std::size_t>(put_at)] != face_ref(t, ip)) {
         return generic();
       }
-      if (t3 != kNoTet) {
-        m = 6 - ip - positions[0] - positions[1];
+      others[0] = &second;
+      across[0] = ip;
+      if constexpr (kOld == 3) {
+        const int m = 6 - ip - positions[0] - positions[1];
+        const Tet& third = mesh_.tets[t3];
         const int m_at = second.index_of(tet.vertex[static_cast<std::size_t>(m)]);
-        const int p_at = mesh_.tets[t3].index_of(tet.vertex[static_cast<std::size_t>(ip)]);
+        const int p_at = third.index_of(tet.vertex[static_cast<std::size_t>(ip)]);
         if (m_at < 0 || p_at < 0 ||
             second.neighbor[static_cast<std::size_t>(m_at)] != face_ref(t3, p_at)) {
           return generic();
         }
+        others[1] = &third;
+        across[1] = m;
       }
     }
-    // link[j][f]: the outside face across new tetrahedron j's face f, or (is_new) 4 * k + g,
-    // face g of new tetrahedron k.
-    std::array<std::array<FaceMatch, 4>, 4> link{};
-    bool textbook = true;
-    auto outside = [&](std::size_t j, int f, FaceRef ref) {
-      const TetId other = ref_tet(ref);
-      if (other == t || other == t2 || other == t3) textbook = false;
-      link[j][static_cast<std::size_t>(f)] = {ref, false, true};
-    };
-    auto across_from = [&](TetId old, VertexId lacking) {
-      const Tet& o = mesh_.tets[old];
-      const int i = o.index_of(lacking);
-      if (i < 0) {
-        textbook = false;
-        return FaceRef{0};
-      }
-      return o.neighbor[static_cast<std::size_t>(i)];
-    };
-    for (std::size_t j = 0; j < count; ++j) {
+    // New tetrahedron j's faces on the region's boundary: out_face[j][r] (its own replaced
+    // position, then ip and m), across which lies the outside face out_ref[j][r]. Its other
+    // faces are inner: face positions[k] is new k's face positions[j].
+    std::array<std::array<int, kOld>, N> out_face{};
+    std::array<std::array<FaceRef, kOld>, N> out_ref{};
+    for (std::size_t j = 0; j < N; ++j) {
       const int a = positions[j];
-      outside(j, a, tet.neighbor[static_cast<std::size_t>(a)]);
-      for (std::size_t k = 0; k < count; ++k) {
-        if (k != j) {
-          link[j][static_cast<std::size_t>(positions[k])] = {static_cast<FaceRef>(4 * k + a), true,
-                                                             true};
+      const VertexId lost = tet.vertex[static_cast<std::size_t>(a)];
+      out_face[j][0] = a;
+      out_ref[j][0] = tet.neighbor[static_cast<std::size_t>(a)];
+      for (std::size_t r = 1; r < kOld; ++r) {
+        const int i = others[r - 1]->index_of(lost);
+        if (i < 0) return generic();
+        out_face[j][r] = across[r - 1];
+        out_ref[j][r] = others[r - 1]->neighbor[static_cast<std::size_t>(i)];
+      }
+      for (std::size_t r = 0; r < kOld; ++r) {
+        for (std::size_t q = 0; q < kOld; ++q) {
+          if (ref_tet(out_ref[j][r]) == old[q]) return generic();
         }
       }
-      const VertexId lost = tet.vertex[static_cast<std::size_t>(a)];
-      if (t2 != kNoTet) outside(j, ip, across_from(t2, lost));
-      if (t3 != kNoTet) outside(j, m, across_from(t3, lost));
     }
-    if (!textbook) return generic();
 
     // As in commit_replacement: lock every tetrahedron written, log it before its first write.
     if constexpr (Sync::kLocks) {
-      for (std::size_t j = 0; j < count; ++j) {
-        for (const FaceMatch& l : link[j]) {
-          if (!l.is_new && !sync_.acquire(ref_tet(l.ref))) return Replaced::GaveUp;
+      for (std::size_t j = 0; j < N; ++j) {
+        for (std::size_t r = 0; r < kOld; ++r) {
+          if (!sync_.acquire(ref_tet(out_ref[j][r]))) return Replaced::GaveUp;
         }
       }
-      for (std::size_t j = 0; j < count; ++j) {
-        for (const FaceMatch& l : link[j]) {
-          if (!l.is_new) sync_.before_write(ref_tet(l.ref));
-        }
+      for (std::size_t j = 0; j < N; ++j) {
+        for (std::size_t r = 0; r < kOld; ++r) sync_.before_write(ref_tet(out_ref[j][r]));
       }
-      for (const TetId o : scratch_old_) sync_.before_write(o);
+      for (std::size_t r = 0; r < kOld; ++r) sync_.before_write(old[r]);
     }
-    std::array<TetId, 4> ids{};
-    std::array<Tet*, 4> records{};  // looked up once: each is written twice
-    for (std::size_t j = 0; j < count; ++j) {
-      ids[j] = slots_.allocate();
-      records[j] = &mesh_.tets[ids[j]];
-      Tet& fresh = *records[j];
+    std::array<TetId, N> ids{};
+    for (std::size_t j = 0; j < N; ++j) ids[j] = slots_.allocate();
+    // The new records, whole: their slots are this thread's and unpublished (fresh, or reused
+    // after their grace period), so nobody reads them before the outside's references below.
+    for (std::size_t j = 0; j < N; ++j) {
+      Tet fresh;
       fresh.vertex = tet.vertex;
       fresh.vertex[static_cast<std::size_t>(positions[j])] = put;
+      for (std::size_t k = 0; k < N; ++k) {
+        if (k != j)
+          fresh.neighbor[static_cast<std::size_t>(positions[k])] = face_ref(ids[k], positions[j]);
+      }
+      for (std::size_t r = 0; r < kOld; ++r) {
+        fresh.neighbor[static_cast<std::size_t>(out_face[j][r])] = out_ref[j][r];
+      }
+      mesh_.tets[ids[j]] = fresh;
       if (dag_) {
         for (auto& c : mesh_.tets.children(ids[j])) c.store(kNoTet, std::memory_order_relaxed);
       }
       sync_.created(ids[j]);
     }
-    // The new tetrahedra's own references first, then the outside's references to them
-    // (release): a walking thread that reaches a new tetrahedron finds all four set.
-    for (std::size_t j = 0; j < count; ++j) {
-      Tet& fresh = *records[j];
-      for (int f = 0; f < 4; ++f) {
-        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
-        store_neighbor(fresh, f, l.is_new ? face_ref(ids[ref_tet(l.ref)], ref_face(l.ref)) : l.ref);
-      }
-    }
-    for (std::size_t j = 0; j < count; ++j) {
-      for (int f = 0; f < 4; ++f) {
-        const FaceMatch l = link[j][static_cast<std::size_t>(f)];
-        if (!l.is_new) {
-          store_neighbor(mesh_.tets[ref_tet(l.ref)], ref_face(l.ref), face_ref(ids[j], f));
-        }
+    // Then the outside's references to them (release): a walking thread that reaches a new
+    // tetrahedron finds all four of its references set.
+    for (std::size_t j = 0; j < N; ++j) {
+      for (std::size_t r = 0; r < kOld; ++r) {
+        const FaceRef l = out_ref[j][r];
+        store_neighbor(mesh_.tets[ref_tet(l)], ref_face(l), face_ref(ids[j], out_face[j][r]));
       }
     }
     // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
-    for (const TetId o : scratch_old_) {
+    for (std::size_t r = 0; r < kOld; ++r) {
+      const TetId o = old[r];
       if (recycle_) {
         mesh_.tets.set_alive(o, false);
         slots_.retire(o);
@@ -247,16 +247,13 @@ class TetReplacement {
       }
       if (dag_) {
         auto& children = mesh_.tets.children(o);
-        for (std::size_t j = 0; j < count; ++j)
-          children[j].store(ids[j], std::memory_order_release);
+        for (std::size_t j = 0; j < N; ++j) children[j].store(ids[j], std::memory_order_release);
       }
       mesh_.tets.set_alive(o, false);
       sync_.killed(o);
     }
-    scratch_created_.assign(ids.begin(), ids.begin() + n);
-    for (std::size_t j = 0; j < count; ++j) {
-      mesh_.tets.set_alive(ids[j], true);
-    }
+    scratch_created_.assign(ids.begin(), ids.end());
+    for (std::size_t j = 0; j < N; ++j) mesh_.tets.set_alive(ids[j], true);
     return Replaced::Done;
   }
 

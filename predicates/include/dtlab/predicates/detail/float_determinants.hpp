@@ -59,8 +59,10 @@ inline double orient3d_underflow(double abs_ux, double abs_vx, double abs_wx) {
 // its two rows, so two equal arguments give two terms that cancel exactly in floating point (or a
 // zero row when one of them is d), and every kernel, fast included, returns an exact 0 when the
 // engine's query point duplicates a vertex, wherever it stands among the arguments.
-inline FilteredValue orient3d_float(const Point3& a, const Point3& b, const Point3& c,
-                                    const Point3& d) {
+// Always inlined: out of line (GCC's choice in the engine) the four doubles came back through
+// memory, a call of 77 instructions where stage A's test needs the determinant and the bound.
+[[gnu::always_inline]] inline FilteredValue orient3d_float(const Point3& a, const Point3& b,
+                                                           const Point3& c, const Point3& d) {
   const double ux = a.x - d.x, uy = a.y - d.y, uz = a.z - d.z;
   const double vx = b.x - d.x, vy = b.y - d.y, vz = b.z - d.z;
   const double wx = c.x - d.x, wy = c.y - d.y, wz = c.z - d.z;
