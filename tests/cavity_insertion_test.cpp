@@ -201,7 +201,7 @@ void expect_open_boundary_changes_no_live_record(bool shared) {
   // would give 8-11).
   replacement.begin({inner});
   ASSERT_EQ(replacement.replace_cavity(4, boundary), Replacement::Replaced::Done);
-  std::vector<engine::TetId> created = replacement.created();
+  std::vector<engine::TetId> created(replacement.created().begin(), replacement.created().end());
   std::sort(created.begin(), created.end());
   EXPECT_EQ(created, (std::vector<engine::TetId>{5, 6, 7, 8}));
   slots.end_insertion(false);

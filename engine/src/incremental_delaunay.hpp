@@ -43,6 +43,7 @@
 #include "shared_mesh.hpp"
 #include "slot_allocator.hpp"
 #include "slot_reclaimer.hpp"
+#include "tet_id_list.hpp"
 #include "tet_replacement.hpp"
 
 namespace dtlab::engine {
@@ -134,7 +135,7 @@ class IncrementalDelaunay {
       throw std::logic_error("dtlab: the first tetrahedron does not close up");
     }
     sync_->commit();
-    mesh_.roots = replacement_.created();
+    mesh_.roots.assign(replacement_.created().begin(), replacement_.created().end());
   }
 
   Outcome insert(VertexId p) {
@@ -340,7 +341,8 @@ class IncrementalDelaunay {
   Outcome finish_split(Replaced done) {
     if (done == Replaced::GaveUp) return Outcome::GaveUp;
     if (done == Replaced::Impossible) return Outcome::Abandoned;
-    stack_.assign(replacement_.created().begin(), replacement_.created().end());
+    stack_.clear();
+    for (const TetId id : replacement_.created()) stack_.push_back(id);
     return Outcome::Inserted;
   }
 
@@ -382,8 +384,7 @@ class IncrementalDelaunay {
   Outcome legalize(VertexId p) {
     std::uint64_t flips = 0;
     while (!stack_.empty()) {
-      const TetId t = stack_.back();
-      stack_.pop_back();
+      const TetId t = stack_.pop_back();
       if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;
       const int ip = mesh_.tets[t].index_of(p);
       const Flip result = legalize_face(t, ip, flips);
@@ -460,7 +461,9 @@ class IncrementalDelaunay {
     std::uint64_t count = 0;
     stack_.clear();
     std::vector<TetId> created;
-    if (legalize_face(t, f, count, /*force=*/true) == Flip::Done) created = stack_;
+    if (legalize_face(t, f, count, /*force=*/true) == Flip::Done) {
+      created.assign(stack_.begin(), stack_.end());
+    }
     stack_.clear();
     return created;
   }
@@ -611,7 +614,7 @@ class IncrementalDelaunay {
   Flip finish_flip(Replaced done) {
     if (done == Replaced::GaveUp) return Flip::GaveUp;
     if (done == Replaced::Impossible) return Flip::NotApplied;
-    stack_.insert(stack_.end(), replacement_.created().begin(), replacement_.created().end());
+    for (const TetId id : replacement_.created()) stack_.push_back(id);
     return Flip::Done;
   }
 
@@ -632,7 +635,7 @@ class IncrementalDelaunay {
   CavitySearch<K, Sync> cavity_search_;
   bool cavity_;  // Bowyer-Watson insertion (walk mode with slot reuse only: no DAG to keep)
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)
-  std::vector<TetId> stack_;  // legalization: new tetrahedra whose face opposite p is unchecked
+  TetIdList stack_;  // legalization: new tetrahedra whose face opposite p is unchecked
 };
 
 }  // namespace dtlab::engine

@@ -72,8 +72,8 @@ class SlotAllocator {
     }
     free_slots_.push_back(t);
   }
-  // t died in the current insertion (walk mode).
-  void retire(TetId t) { retired_.push_back(t); }
+  // t died in the current insertion (walk mode). Always inlined, like allocate.
+  [[gnu::always_inline]] void retire(TetId t) { retired_.push_back(t); }
 
   // 64 slots (of 40 or 56 bytes: 40 or 56 cache lines): a run spans whole cache lines, and what
   // a run leaves unused at the end (dead, never alive) is at most 63 slots per thread.

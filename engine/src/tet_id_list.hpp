@@ -13,7 +13,8 @@ namespace dtlab::engine {
 
 class TetIdList {
  public:
-  void push_back(TetId t) {
+  // Always inlined: GCC had made it a call again (1 % of a sequential walk with flips).
+  [[gnu::always_inline]] void push_back(TetId t) {
     if (size_ == ids_.size()) grow();
     ids_[size_++] = t;
   }
