@@ -294,6 +294,7 @@ class IncrementalDelaunay {
         replacement_.push_replaced(replacement_.old_tets()[r], ring_tet.index_of(b), p,
                                    static_cast<int>(r));
       }
+      return finish_split(replacement_.replace_edge_ring(a, b));
     } else if (zeros == 3) {
       const int m = static_cast<int>(
           std::find_if(o.begin(), o.end(), [](int s) { return s != 0; }) - o.begin());
@@ -601,16 +602,12 @@ class IncrementalDelaunay {
     const Tet& tet3 = mesh_.tets[t3];
     const int e0 = tet3.index_of(tet.vertex[static_cast<std::size_t>(edge[0])]);
     const int e1 = tet3.index_of(tet.vertex[static_cast<std::size_t>(edge[1])]);
+    if (e0 < 0 || e1 < 0) return Flip::NotApplied;  // t3 lacks the edge: a broken mesh
     if (geometry_.orient_replaced(tet3, e0, y) <= 0 ||
         geometry_.orient_replaced(tet3, e1, y) <= 0) {
       return Flip::NotApplied;
     }
     if (!sync_->acquire(t3) || !sync_->acquire(t4)) return Flip::GaveUp;
-    begin_flip({t, t2, t3, t4});
-    replacement_.push_replaced(t, edge[0], y, -1);
-    replacement_.push_replaced(t, edge[1], y, -1);
-    replacement_.push_replaced(t3, e0, y, -1);
-    replacement_.push_replaced(t3, e1, y, -1);
     const Flip result = finish_flip(replacement_.replace_flip44(t, t2, t3, t4, ip, m, edge, y));
     if (result != Flip::Done) return result;
     if (vm == kInfiniteVertex || w == kInfiniteVertex) {
@@ -621,7 +618,6 @@ class IncrementalDelaunay {
     return Flip::Done;
   }
 
-  void begin_flip(std::initializer_list<TetId> old) { replacement_.begin(old); }
   // NotApplied when the flip's faces do not close up (inexact kernel only); the mesh is then
   // unchanged.
   Flip finish_flip(Replaced done) {

@@ -126,6 +126,15 @@ class TetReplacement {
     return commit_replacement();
   }
 
+  // k->2k, the split of edge ab by p: old_tets() is the ring of tetrahedra around ab in ring
+  // order (each glued to the next), and new tetrahedra 2r and 2r + 1 are ring tetrahedron r with
+  // a, then b, replaced by p (push_replaced, parent r). Linked by link_edge_ring, without the
+  // generic search; replace() decides where that does not apply.
+  Replaced replace_edge_ring(VertexId a, VertexId b) {
+    if (link_edge_ring(a, b)) return commit_replacement();
+    return replace();
+  }
+
   // The three most frequent replacements, written directly: 1->4 (N = 4, old t), S23 (N = 3, old
   // t and t2) and S32 (N = 2, old t, t2 and t3). New tetrahedron j is t with the vertex at
   // positions[j] replaced by `put`, and its faces follow from the adjacency alone, without
@@ -266,21 +275,33 @@ class TetReplacement {
     return Replaced::Done;
   }
 
-  // S44 (S22 on the hull), the most frequent flip on grids, written directly after flip44 has
-  // pushed its four copies: t, t2 across t's face ip (apex y), t3 across t's face m and t4 across
-  // t3's face opposite p (apex y) lie around the edge t[edge[0]] t[edge[1]]; new s (s = 0, 1) is t
-  // with t[edge[s]] replaced by y and new 2 + s is t3 with the same vertex replaced. These are
-  // link_from_sources' rules with every lookup known: each new one's face at its replaced
-  // position is its source's, on the boundary; the two copies of one source share a face; the
-  // copies of t and t3 that replaced the same vertex share the face across t's face m; and the
-  // face of a copy of t across t's face ip is t2's face opposite the replaced vertex (of a copy of
-  // t3, across t3's face opposite p, t4's), on the boundary. The neighbourhood is checked as in
-  // replace_known (t and t3 glued both ways, t2's and t4's apex y, y in neither t nor t3, no
-  // boundary face that belongs to an old tetrahedron); otherwise replace() decides.
+  // S44 (S22 on the hull), the most frequent flip on grids: t, t2 across t's face ip (apex y), t3
+  // across t's face m and t4 across t3's face opposite p (apex y) lie around the edge
+  // t[edge[0]] t[edge[1]]; new s (s = 0, 1) is t with t[edge[s]] replaced by y and new 2 + s is
+  // t3 with the same vertex replaced. These are link_from_sources' rules with every lookup known:
+  // each new one's face at its replaced position is its source's, on the boundary; the two copies
+  // of one source share a face; the copies of t and t3 that replaced the same vertex share the
+  // face across t's face m; and the face of a copy of t across t's face ip is t2's face opposite
+  // the replaced vertex (of a copy of t3, across t3's face opposite p, t4's), on the boundary. The
+  // neighbourhood is checked as in replace_known (t and t3 glued both ways, t2's and t4's apex y,
+  // y in neither t nor t3, no boundary face that belongs to an old tetrahedron); otherwise the
+  // generic replace() decides. Written directly, as replace_known (through commit_replacement's
+  // vectors it was a quarter of the grid's linking time).
   Replaced replace_flip44(TetId t, TetId t2, TetId t3, TetId t4, int ip, int m,
                           const std::array<int, 2>& edge, VertexId y) {
     const Tet& first = mesh_.tets[t];
     const Tet& third = mesh_.tets[t3];
+    auto generic = [&] {
+      begin({t, t2, t3, t4});
+      const int e0 = third.index_of(first.vertex[static_cast<std::size_t>(edge[0])]);
+      const int e1 = third.index_of(first.vertex[static_cast<std::size_t>(edge[1])]);
+      push_replaced(t, edge[0], y, -1);
+      push_replaced(t, edge[1], y, -1);
+      if (e0 < 0 || e1 < 0) return Replaced::Impossible;  // t3 does not hold the edge
+      push_replaced(t3, e0, y, -1);
+      push_replaced(t3, e1, y, -1);
+      return replace();
+    };
     const FaceRef to2 = first.neighbor[static_cast<std::size_t>(ip)];
     const FaceRef to3 = first.neighbor[static_cast<std::size_t>(m)];
     const int w_at = ref_face(to3);
@@ -288,20 +309,21 @@ class TetReplacement {
     if (ref_tet(to2) != t2 || ref_tet(to3) != t3 || p_at < 0 ||
         third.neighbor[static_cast<std::size_t>(w_at)] != face_ref(t, m) ||
         first.index_of(y) >= 0 || third.index_of(y) >= 0) {
-      return replace();
+      return generic();
     }
     const FaceRef to4 = third.neighbor[static_cast<std::size_t>(p_at)];
     const Tet& second = mesh_.tets[t2];
     const Tet& fourth = mesh_.tets[t4];
     if (ref_tet(to4) != t4 || second.vertex[static_cast<std::size_t>(ref_face(to2))] != y ||
         fourth.vertex[static_cast<std::size_t>(ref_face(to4))] != y) {
-      return replace();
+      return generic();
     }
+    const std::array<TetId, 4> old{t, t2, t3, t4};
     auto is_old = [&](FaceRef r) {
       const TetId o = ref_tet(r);
       return o == t || o == t2 || o == t3 || o == t4;
     };
-    matched_.resize(16);
+    FixedLinks<4> links;
     for (std::size_t s = 0; s < 2; ++s) {
       const int e = edge[s];
       const int other = edge[1 - s];
@@ -312,28 +334,31 @@ class TetReplacement {
       const int e4 = fourth.index_of(v);
       if (e3 < 0 || other3 < 0 || e2 < 0 || e4 < 0 ||
           ((1 << e3) | (1 << other3) | (1 << w_at) | (1 << p_at)) != 15) {
-        return replace();  // every face of each new tetrahedron is set below, once
+        return generic();  // every face of each new tetrahedron is set below, once
       }
       const std::array<FaceRef, 4> outside{first.neighbor[static_cast<std::size_t>(e)],
                                            second.neighbor[static_cast<std::size_t>(e2)],
                                            third.neighbor[static_cast<std::size_t>(e3)],
                                            fourth.neighbor[static_cast<std::size_t>(e4)]};
       for (const FaceRef r : outside) {
-        if (is_old(r)) return replace();
+        if (is_old(r)) return generic();
       }
-      const std::size_t from_first = 4 * s;
-      const std::size_t from_third = 4 * (2 + s);
-      auto new_face = [](std::size_t j, int f) { return static_cast<FaceRef>(4 * j + f); };
-      matched_[from_first + static_cast<std::size_t>(e)] = {outside[0], false, true};
-      matched_[from_first + static_cast<std::size_t>(other)] = {new_face(1 - s, e), true, true};
-      matched_[from_first + static_cast<std::size_t>(ip)] = {outside[1], false, true};
-      matched_[from_first + static_cast<std::size_t>(m)] = {new_face(2 + s, w_at), true, true};
-      matched_[from_third + static_cast<std::size_t>(e3)] = {outside[2], false, true};
-      matched_[from_third + static_cast<std::size_t>(other3)] = {new_face(3 - s, e3), true, true};
-      matched_[from_third + static_cast<std::size_t>(w_at)] = {new_face(s, m), true, true};
-      matched_[from_third + static_cast<std::size_t>(p_at)] = {outside[3], false, true};
+      const std::size_t from_first = s;
+      const std::size_t from_third = 2 + s;
+      links.quad[from_first] = first.vertex;
+      links.quad[from_first][static_cast<std::size_t>(e)] = y;
+      links.quad[from_third] = third.vertex;
+      links.quad[from_third][static_cast<std::size_t>(e3)] = y;
+      links.outside(from_first, e, outside[0]);
+      links.inner(from_first, other, 1 - s, e);
+      links.outside(from_first, ip, outside[1]);
+      links.inner(from_first, m, 2 + s, w_at);
+      links.outside(from_third, e3, outside[2]);
+      links.inner(from_third, other3, 3 - s, e3);
+      links.inner(from_third, w_at, s, m);
+      links.outside(from_third, p_at, outside[3]);
     }
-    return commit_replacement();
+    return commit_fixed(old, links);
   }
 
   // Bowyer-Watson's replacement (cavity_search.hpp): the cavity, in old_tets(), by p joined to
@@ -412,6 +437,85 @@ class TetReplacement {
     return Replaced::Done;
   }
 
+  // A replacement whose N new tetrahedra and every link are known (replace_flip44): new j is
+  // quad[j]; its face f lies across link[j][f], an outside face as the mesh names it, or (bit f of
+  // inner_mask[j]) face g of new k, as 4 k + g.
+  template <std::size_t N>
+  struct FixedLinks {
+    std::array<Quad, N> quad{};
+    std::array<std::array<FaceRef, 4>, N> link{};
+    std::array<unsigned, N> inner_mask{};
+    void outside(std::size_t j, int f, FaceRef r) { link[j][static_cast<std::size_t>(f)] = r; }
+    void inner(std::size_t j, int f, std::size_t k, int g) {
+      link[j][static_cast<std::size_t>(f)] = face_ref(static_cast<TetId>(k), g);
+      inner_mask[j] |= 1U << f;
+    }
+    [[nodiscard]] bool is_inner(std::size_t j, std::size_t f) const {
+      return ((inner_mask[j] >> f) & 1U) != 0;
+    }
+  };
+
+  // commit_replacement for FixedLinks, with the same order of locks, logs and writes; every old
+  // tetrahedron gets every new one as a DAG child.
+  template <std::size_t N, std::size_t kOld>
+  Replaced commit_fixed(const std::array<TetId, kOld>& old, const FixedLinks<N>& links) {
+    if constexpr (Sync::kLocks) {
+      for (std::size_t j = 0; j < N; ++j) {
+        for (std::size_t f = 0; f < 4; ++f) {
+          if (!links.is_inner(j, f) && !sync_.acquire(ref_tet(links.link[j][f]))) {
+            return Replaced::GaveUp;
+          }
+        }
+      }
+      for (std::size_t j = 0; j < N; ++j) {
+        for (std::size_t f = 0; f < 4; ++f) {
+          if (!links.is_inner(j, f)) sync_.before_write(ref_tet(links.link[j][f]));
+        }
+      }
+      for (const TetId o : old) sync_.before_write(o);
+    }
+    std::array<TetId, N> ids{};
+    for (std::size_t j = 0; j < N; ++j) ids[j] = slots_.allocate();
+    for (std::size_t j = 0; j < N; ++j) {
+      Tet& fresh = mesh_.tets[ids[j]];  // in place, as in replace_known
+      fresh.vertex = links.quad[j];
+      for (std::size_t f = 0; f < 4; ++f) {
+        const FaceRef l = links.link[j][f];
+        fresh.neighbor[f] = links.is_inner(j, f) ? face_ref(ids[ref_tet(l)], ref_face(l)) : l;
+      }
+      if (dag_) {
+        for (auto& c : mesh_.tets.children(ids[j])) c.store(kNoTet, std::memory_order_relaxed);
+      }
+      sync_.created(ids[j]);
+    }
+    for (std::size_t j = 0; j < N; ++j) {
+      for (std::size_t f = 0; f < 4; ++f) {
+        if (links.is_inner(j, f)) continue;
+        const FaceRef l = links.link[j][f];
+        store_neighbor(mesh_.tets[ref_tet(l)], ref_face(l), face_ref(ids[j], static_cast<int>(f)));
+      }
+    }
+    for (const TetId o : old) {
+      if (recycle_) {
+        mesh_.tets.set_alive(o, false);
+        slots_.retire(o);
+        sync_.killed(o);
+        continue;
+      }
+      if (dag_) {
+        auto& children = mesh_.tets.children(o);
+        for (std::size_t j = 0; j < N; ++j) children[j].store(ids[j], std::memory_order_release);
+      }
+      mesh_.tets.set_alive(o, false);
+      sync_.killed(o);
+    }
+    for (std::size_t j = 0; j < N; ++j) known_created_[j] = ids[j];
+    known_count_ = N;
+    created_known_ = true;
+    for (std::size_t j = 0; j < N; ++j) mesh_.tets.set_alive(ids[j], true);
+    return Replaced::Done;
+  }
+
   // A lock can still be refused after these writes (a split or flip is followed by the rest of
   // the legalization): every tetrahedron written below is locked first (the outside neighbours
   // get new back references; the old ones are locked already), and the undo log sees each before
@@ -486,6 +590,68 @@ class TetReplacement {
       if (scratch_old_[r] == t) return static_cast<int>(r);
     }
     return -1;
+  }
+
+  // replace_edge_ring's links. Copy 2r of ring tetrahedron R_r (a replaced by p, at a's position
+  // ia) and copy 2r + 1 (b replaced, at ib): face ia of copy 2r is R_r's face ia, on the
+  // boundary (likewise face ib of copy 2r + 1); the two copies share their faces ib and ia; and
+  // across R_r's face c (c the position of one of its two other vertices) lies its ring neighbour
+  // R_q, at face g, so face c of each copy of R_r is face g of the copy of R_q that replaced the
+  // same vertex. False (nothing written) where the ring is not the textbook one: the new
+  // tetrahedra not in that order, p in a ring tetrahedron, a ring neighbour that is not the next
+  // or the previous one or not glued back, or a boundary face that belongs to the ring.
+  bool link_edge_ring(VertexId a, VertexId b) {
+    const std::size_t k = scratch_old_.size();
+    if (k < 3 || scratch_new_.size() != 2 * k) return false;
+    matched_.resize(4 * 2 * k);
+    auto in_ring = [&](TetId x) {
+      return std::find(scratch_old_.begin(), scratch_old_.end(), x) != scratch_old_.end();
+    };
+    for (std::size_t r = 0; r < k; ++r) {
+      const TetId current = scratch_old_[r];
+      const Tet& tet = mesh_.tets[current];
+      const int ia = tet.index_of(a);
+      const int ib = tet.index_of(b);
+      if (ia < 0 || ib < 0 || scratch_source_[2 * r] != std::pair<TetId, int>{current, ia} ||
+          scratch_source_[2 * r + 1] != std::pair<TetId, int>{current, ib} ||
+          tet.index_of(scratch_new_[2 * r][static_cast<std::size_t>(ia)]) >= 0) {
+        return false;
+      }
+      const std::size_t copy_a = 4 * (2 * r);
+      const std::size_t copy_b = 4 * (2 * r + 1);
+      const FaceRef out_a = tet.neighbor[static_cast<std::size_t>(ia)];
+      const FaceRef out_b = tet.neighbor[static_cast<std::size_t>(ib)];
+      if (in_ring(ref_tet(out_a)) || in_ring(ref_tet(out_b))) return false;
+      matched_[copy_a + static_cast<std::size_t>(ia)] = {out_a, false, true};
+      matched_[copy_b + static_cast<std::size_t>(ib)] = {out_b, false, true};
+      matched_[copy_a + static_cast<std::size_t>(ib)] = {
+          static_cast<FaceRef>(copy_b) + static_cast<FaceRef>(ia), true, true};
+      matched_[copy_b + static_cast<std::size_t>(ia)] = {
+          static_cast<FaceRef>(copy_a) + static_cast<FaceRef>(ib), true, true};
+      const std::size_t next = r + 1 == k ? 0 : r + 1;
+      const std::size_t previous = r == 0 ? k - 1 : r - 1;
+      for (int c = 0; c < 4; ++c) {
+        if (c == ia || c == ib) continue;
+        const FaceRef across = tet.neighbor[static_cast<std::size_t>(c)];
+        std::size_t q = next;
+        if (ref_tet(across) != scratch_old_[next]) {
+          if (ref_tet(across) != scratch_old_[previous]) return false;
+          q = previous;
+        }
+        const int g = ref_face(across);
+        const Tet& neighbour = mesh_.tets[scratch_old_[q]];
+        if (neighbour.neighbor[static_cast<std::size_t>(g)] != face_ref(current, c) ||
+            neighbour.vertex[static_cast<std::size_t>(g)] == a ||
+            neighbour.vertex[static_cast<std::size_t>(g)] == b) {
+          return false;
+        }
+        matched_[copy_a + static_cast<std::size_t>(c)] = {
+            static_cast<FaceRef>(4 * (2 * q) + static_cast<std::size_t>(g)), true, true};
+        matched_[copy_b + static_cast<std::size_t>(c)] = {
+            static_cast<FaceRef>(4 * (2 * q + 1) + static_cast<std::size_t>(g)), true, true};
+      }
+    }
+    return true;
   }
 
   // replace()'s direct path: fills matched_ from the sources alone, without matching keys, when
