@@ -588,6 +588,7 @@ class IncrementalDelaunay {
     const TetId t3 = ref_tet(across3);
     const VertexId w = mesh_.tets[t3].vertex[static_cast<std::size_t>(ref_face(across3))];
     const int m2 = mesh_.tets[t2].index_of(vm);
+    if (m2 < 0) return Flip::NotApplied;  // t2 lacks t's vertex m: a broken mesh
     const FaceRef across4 = mesh_.tets[t2].neighbor[static_cast<std::size_t>(m2)];
     const TetId t4 = ref_tet(across4);
     if (mesh_.tets[t4].vertex[static_cast<std::size_t>(ref_face(across4))] != w) {

@@ -47,9 +47,10 @@ struct SharedMesh {
                                    bool release, int threads) const;
 };
 
-// Neighbour references are read by walking threads that hold no lock, so they are written with
-// release (after the tetrahedron they name is complete) and read with acquire (plain moves on
-// x86).
+// Neighbour references are read by walking threads that hold no lock, so a published record's
+// are written with release (after the tetrahedron they name is complete) and read with acquire
+// (plain moves on x86). A new record, unreachable until the outside's references to it are
+// stored, is written by plain stores (tet_replacement.hpp).
 inline FaceRef load_neighbor(const Tet& tet, int f) {
   return std::atomic_ref<FaceRef>(const_cast<FaceRef&>(tet.neighbor[static_cast<std::size_t>(f)]))
       .load(std::memory_order_acquire);
