@@ -262,25 +262,7 @@ class TetReplacement {
       }
     }
     // Every old tetrahedron is covered by all the new ones (1->4 has one old tetrahedron).
-    for (std::size_t r = 0; r < kOld; ++r) {
-      const TetId o = old[r];
-      if (recycle_) {
-        mesh_.tets.set_alive(o, false);
-        slots_.retire(o);
-        sync_.killed(o);
-        continue;
-      }
-      if (dag_) {
-        auto& children = mesh_.tets.children(o);
-        for (std::size_t j = 0; j < N; ++j) children[j].store(ids[j], std::memory_order_release);
-      }
-      mesh_.tets.set_alive(o, false);
-      sync_.killed(o);
-    }
-    for (std::size_t j = 0; j < N; ++j) known_created_[j] = ids[j];
-    known_count_ = N;
-    created_known_ = true;
-    for (std::size_t j = 0; j < N; ++j) mesh_.tets.set_alive(ids[j], true);
+    end_known(std::span<const TetId>(old.data(), kOld), ids);
     return Replaced::Done;
   }
 
@@ -520,6 +502,15 @@ class TetReplacement {
         store_neighbor(mesh_.tets[ref_tet(l)], ref_face(l), face_ref(ids[j], static_cast<int>(f)));
       }
     }
+    end_known(std::span<const TetId>(old), ids);
+    return Replaced::Done;
+  }
+
+  // The end of replace_known and commit_fixed, after the outside's references: the old
+  // tetrahedra die (walk mode: their slots retired for reuse; DAG mode: each the parent of every
+  // new one, children published first), then the new ones are created() and live.
+  template <std::size_t N>
+  void end_known(std::span<const TetId> old, const std::array<TetId, N>& ids) {
     for (const TetId o : old) {
       if (recycle_) {
         mesh_.tets.set_alive(o, false);
@@ -538,7 +529,6 @@ class TetReplacement {
     known_count_ = N;
     created_known_ = true;
     for (std::size_t j = 0; j < N; ++j) mesh_.tets.set_alive(ids[j], true);
-    return Replaced::Done;
   }
 
   // A lock can still be refused after these writes (a split or flip is followed by the rest of
