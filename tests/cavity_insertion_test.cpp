@@ -184,9 +184,9 @@ void expect_open_boundary_changes_no_live_record(bool shared) {
     return records;
   };
   const auto before = snapshot();
-  replacement.begin({inner});
+  const std::vector<engine::TetId> cavity{inner};
   const std::vector<engine::CavityFace> open(boundary.begin(), boundary.begin() + 3);
-  EXPECT_EQ(replacement.replace_cavity(4, open), Replacement::Replaced::Impossible);
+  EXPECT_EQ(replacement.replace_cavity(4, open, cavity), Replacement::Replaced::Impossible);
   EXPECT_TRUE(replacement.created().empty());
   const auto after = snapshot();
   for (engine::TetId t = 0; t < kSlots; ++t) {
@@ -199,8 +199,7 @@ void expect_open_boundary_changes_no_live_record(bool shared) {
 
   // The slots given back are taken again first, so the four new tetrahedra are 5-8 (a leak
   // would give 8-11).
-  replacement.begin({inner});
-  ASSERT_EQ(replacement.replace_cavity(4, boundary), Replacement::Replaced::Done);
+  ASSERT_EQ(replacement.replace_cavity(4, boundary, cavity), Replacement::Replaced::Done);
   std::vector<engine::TetId> created(replacement.created().begin(), replacement.created().end());
   std::sort(created.begin(), created.end());
   EXPECT_EQ(created, (std::vector<engine::TetId>{5, 6, 7, 8}));

@@ -74,15 +74,13 @@ class CavitySearch {
       if (verify_star_ && geometry_.orient_replaced(mesh_.tets[b.inside], b.face, p) <= 0)
         return Grown::NotStar;
     }
-    cavity_.resize(cavity_size_);  // a smaller size: no write
     return Grown::Done;
   }
 
   // After Done only.
-  [[nodiscard]] const std::vector<TetId>& cavity() const { return cavity_; }
+  [[nodiscard]] std::span<const TetId> cavity() const { return {cavity_.data(), cavity_size_}; }
   // Hands the cavity to `other` (the replacement's list of old tetrahedra) by a swap of the
   // two vectors: both keep their memory, nothing is copied.
-  void move_cavity_to(std::vector<TetId>& other) { cavity_.swap(other); }
   [[nodiscard]] std::span<const CavityFace> boundary() const {
     return {boundary_.data(), boundary_size_};
   }
@@ -92,11 +90,9 @@ class CavitySearch {
   // comes (the search's time goes mostly to first reads of the neighbours beyond the cavity).
   // The boundary and the cavity grow by a store (push_back was a call per entry, not inlined:
   // about 3 % of the optimistic methods' samples at 1M points for the boundary, 1.9 % of a
-  // sequential walk's instructions for the cavity). The boundary's vector is kept from earlier
-  // insertions, so only a larger boundary than any before grows it. The cavity's is not: the
-  // swap of move_cavity_to hands it to the replacement and takes back the replacement's emptied
-  // list, so each search grows it once from size 0 (its capacity is kept; the growth writes 64
-  // zeros, then more only for a larger cavity).
+  // sequential walk's instructions for the cavity). Both vectors are kept from earlier
+  // insertions (the replacement reads the cavity in place), so only a larger cavity or boundary
+  // than any before grows them.
   void add_boundary(const CavityFace& face) {
     if (boundary_size_ == boundary_.size()) [[unlikely]] {
       boundary_.resize(2 * boundary_size_ + 64);
@@ -118,7 +114,7 @@ class CavitySearch {
   Sync& sync_;
   bool verify_star_;
   EpochTable<TetId, bool> in_cavity_;  // the tetrahedra tested: in conflict or not
-  std::vector<TetId> cavity_;          // the first cavity_size_ entries (all of it after Done)
+  std::vector<TetId> cavity_;          // the first cavity_size_ entries
   std::size_t cavity_size_ = 0;
   std::vector<CavityFace> boundary_;  // the first boundary_size_ entries
   std::size_t boundary_size_ = 0;

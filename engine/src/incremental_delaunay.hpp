@@ -320,11 +320,10 @@ class IncrementalDelaunay {
     const Grown grown = cavity_search_.grow(t, p);
     if (grown == Grown::GaveUp) return Outcome::GaveUp;
     if (grown == Grown::Done) {
-      replacement_.begin({});
-      cavity_search_.move_cavity_to(replacement_.old_tets());
-      const std::size_t removed = replacement_.old_tets().size();
+      const std::size_t removed = cavity_search_.cavity().size();
       // Never GaveUp: the search holds every lock the replacement needs.
-      if (replacement_.replace_cavity(p, cavity_search_.boundary()) == Replaced::Done) {
+      if (replacement_.replace_cavity(p, cavity_search_.boundary(), cavity_search_.cavity()) ==
+          Replaced::Done) {
         ++stats_.cavity.insertions;
         stats_.cavity.tetrahedra_removed += removed;
         return Outcome::Inserted;

@@ -378,7 +378,9 @@ class TetReplacement {
   // period is over), so writing them changes nothing anyone can see. Only then is the pairing
   // checked; an impossible one gives the slots back. The outside's references to the new
   // tetrahedra, the deaths and the births come after the check, as in commit_replacement.
-  Replaced replace_cavity(VertexId p, std::span<const CavityFace> boundary) {
+  // `cavity` lists the tetrahedra replaced (the search's own list, read in place).
+  Replaced replace_cavity(VertexId p, std::span<const CavityFace> boundary,
+                          std::span<const TetId> cavity) {
     assert(!dag_);
     const std::size_t n = boundary.size();
     created_known_ = false;
@@ -431,7 +433,7 @@ class TetReplacement {
       const CavityFace& b = boundary[j];
       store_neighbor(mesh_.tets[ref_tet(b.outside)], ref_face(b.outside), face_ref(ids[j], b.face));
     }
-    for (const TetId o : scratch_old_) {
+    for (const TetId o : cavity) {
       mesh_.tets.set_alive(o, false);
       slots_.retire(o);
       sync_.killed(o, /*last_write=*/true);
