@@ -48,9 +48,9 @@ class TetReplacement {
     scratch_source_.clear();
   }
   std::vector<TetId>& old_tets() { return scratch_old_; }
-  // The new ids of the last replacement that wrote (replace_known's in a fixed array: a vector's
-  // assign or resize of 2 to 4 ids was a call, and its memmove 5 % of a sequential walk's time
-  // with flips at 1M points).
+  // The new ids of the last replacement that wrote (replace_known's and commit_fixed's in a fixed
+  // array: a vector's assign or resize of 2 to 4 ids was a call, and its memmove 5 % of a
+  // sequential walk's time with flips at 1M points).
   [[nodiscard]] std::span<const TetId> created() const {
     if (created_known_) return {known_created_.data(), known_count_};
     return scratch_created_;
@@ -274,10 +274,11 @@ class TetReplacement {
   // of one source share a face; the copies of t and t3 that replaced the same vertex share the
   // face across t's face m; and the face of a copy of t across t's face ip is t2's face opposite
   // the replaced vertex (of a copy of t3, across t3's face opposite p, t4's), on the boundary. The
-  // neighbourhood is checked as in replace_known (t and t3 glued both ways, t2's and t4's apex y,
-  // y in neither t nor t3, no boundary face that belongs to an old tetrahedron); otherwise the
-  // generic replace() decides. Written directly, as replace_known (through commit_replacement's
-  // vectors it was a quarter of the grid's linking time).
+  // neighbourhood is checked as in replace_known (the four tetrahedra distinct, each pair that
+  // shares a face glued both ways, t2's and t4's apex y, y in neither t nor t3, no boundary face
+  // that belongs to an old tetrahedron); otherwise the generic replace() decides. Written directly,
+  // as replace_known (through commit_replacement's vectors it was a quarter of the grid's linking
+  // time).
   Replaced replace_flip44(TetId t, TetId t2, TetId t3, TetId t4, int ip, int m,
                           const std::array<int, 2>& edge, VertexId y) {
     const Tet& first = mesh_.tets[t];
@@ -364,7 +365,7 @@ class TetReplacement {
     return commit_fixed(old, links);
   }
 
-  // Bowyer-Watson's replacement (cavity_search.hpp): the cavity, in old_tets(), by p joined to
+  // Bowyer-Watson's replacement (cavity_search.hpp): the cavity, `cavity`, by p joined to
   // each boundary face, in `boundary`'s order. New tetrahedron j is its face's inside
   // tetrahedron with the vertex at `face` replaced by p: its face there is the boundary face, and
   // each of its three other faces holds p and one edge of the boundary face, shared with the one
@@ -797,7 +798,7 @@ class TetReplacement {
   std::vector<int> scratch_parent_;  // index in scratch_old_ of the only DAG parent, or -1: all
   std::vector<std::pair<TetId, int>> scratch_source_;  // (old tetrahedron, replaced position)
   std::vector<TetId> scratch_created_;
-  std::array<TetId, 4> known_created_{};  // replace_known's new ids
+  std::array<TetId, 4> known_created_{};  // replace_known's and commit_fixed's new ids
   std::size_t known_count_ = 0;
   bool created_known_ = false;  // created() is known_created_, else scratch_created_
   std::vector<OpenFace> open_faces_;
