@@ -367,6 +367,9 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
           EXPECT_EQ(result.stats.splay.stars, 0u) << what;
         } else {
           EXPECT_GT(result.stats.splay.tetrahedra_removed, 0u) << what;
+          // The mesh is consistent (checked above): the faces the post-check's validation
+          // rejected are what the repair splayed from, without a scan of its own.
+          EXPECT_TRUE(result.stats.splay.found_by_post_check) << what;
         }
         break;
       case engine::Repair::Rebuild:

@@ -292,6 +292,45 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
   EXPECT_EQ(results[0], results[1]);
 }
 
+// Burglary's post-check hands the faces its validation rejected to the repair instead of a second
+// scan. On the same damage (forced flips, interior and hull faces; ties on the grid and the
+// cospherical points, where only the perturbation rejects a face), the validator's findings and
+// the exact scan's must be the same faces and seeds, and give the same stars and mesh.
+TEST(SplaySharedMesh, ValidatedFindingsAreTheScansFindings) {
+  for (const std::string family : {"uniform", "grid", "cospherical"}) {
+    const auto points = generators::generate(family, 3000, 3).points;
+    const auto limit = static_cast<VertexId>(points.size());
+    std::vector<engine::SplayStats> all_stats;
+    std::vector<std::vector<engine::Tetrahedron>> results;
+    for (const bool from_validation : {false, true}) {
+      BrokenMesh broken(points);
+      ASSERT_EQ(broken.force_flips(60, 21), 60) << family;
+      const engine::ValidationReport report =
+          engine::validate(points, broken.dt.finite_tetrahedra(limit));
+      ASSERT_TRUE(report.mesh_consistent()) << family << report.json();
+      ASSERT_GT(report.perturbed_violations, 0U) << family;
+      engine::ValidatedFindings found;
+      found.rejected_faces = report.perturbed_violations;
+      found.vertices.assign(report.perturbed_violation_vertices.begin(),
+                            report.perturbed_violation_vertices.end());
+      engine::SplayStats stats;
+      engine::splay_shared_mesh(broken.dt.mesh(), {}, true, 2, stats,
+                                from_validation ? &found : nullptr);
+      EXPECT_EQ(stats.found_by_post_check, from_validation) << family;
+      EXPECT_TRUE(
+          engine::validate(points, broken.dt.finite_tetrahedra(limit)).is_perturbed_delaunay())
+          << family;
+      results.push_back(engine::canonical_tetrahedra(broken.dt.finite_tetrahedra(limit)));
+      all_stats.push_back(stats);
+    }
+    EXPECT_EQ(all_stats[0].non_delaunay_faces, all_stats[1].non_delaunay_faces) << family;
+    EXPECT_EQ(all_stats[0].seeds, all_stats[1].seeds) << family;
+    EXPECT_EQ(all_stats[0].stars, all_stats[1].stars) << family;
+    EXPECT_EQ(all_stats[0].tetrahedra_created, all_stats[1].tetrahedra_created) << family;
+    EXPECT_EQ(results[0], results[1]) << family;
+  }
+}
+
 // The local repair of the engine's mesh: forced flips break it; splaying from the broken faces
 // gives back the Delaunay mesh and touches only stars near them.
 TEST(SplaySharedMesh, InjectedFlipsAreRepairedLocally) {

@@ -10,6 +10,7 @@
 #include <deque>
 #include <exception>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <thread>
 #include <unordered_map>
@@ -173,6 +174,27 @@ void count_outcome(typename Dt::Outcome outcome, ThreadStats& t) {
   }
 }
 
+// The post-check's rejected faces as star splaying's seeds: their vertices renamed from the
+// output's names (each set of equal points by its lowest index, SharedMesh::finite_tetrahedra)
+// back to the mesh's (the point of the set that was inserted).
+ValidatedFindings validated_findings(const ValidationReport& report, std::size_t input_count,
+                                     const std::vector<std::pair<VertexId, VertexId>>& duplicates) {
+  std::vector<VertexId> mesh_vertex(input_count);
+  std::iota(mesh_vertex.begin(), mesh_vertex.end(), VertexId{0});
+  std::vector<VertexId> output_name = mesh_vertex;
+  for (const auto& [duplicate, vertex] : duplicates) {
+    output_name[vertex] = std::min(output_name[vertex], duplicate);
+  }
+  for (const auto& [duplicate, vertex] : duplicates) mesh_vertex[output_name[vertex]] = vertex;
+  ValidatedFindings found;
+  found.rejected_faces = report.perturbed_violations;
+  found.vertices.reserve(report.perturbed_violation_vertices.size());
+  for (const std::uint32_t v : report.perturbed_violation_vertices) {
+    found.vertices.push_back(mesh_vertex.at(v));
+  }
+  return found;
+}
+
 // Burglary's sequential post-check: the exact validator's count after the parallel run; with
 // --repair, Lawson flips on the marked tetrahedra, then (only if the validator still finds
 // non-Delaunay faces) on every tetrahedron. Flips can get stuck in 3D: what they leave is reported
@@ -232,9 +254,17 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
       stats.splay.proven_by_post_check = true;
       return tets;
     }
-    // Star splaying from the marks and every non-Delaunay face: always ends Delaunay.
-    splay_shared_mesh(mesh, marks, options.kernel != KernelKind::Fast, options.threads,
-                      stats.splay);
+    // Star splaying from the marks and every non-Delaunay face: always ends Delaunay. Where the
+    // validation above judged the mesh consistent (built exactly), the faces it rejected are the
+    // ones the repair's exact scan would find: handed over, they spare a second pass over the
+    // whole mesh.
+    const bool exact_mesh = options.kernel != KernelKind::Fast;
+    std::optional<ValidatedFindings> found;
+    if (hull_counts && exact_mesh && report.mesh_consistent()) {
+      found = validated_findings(report, input_count, duplicates);
+    }
+    splay_shared_mesh(mesh, marks, exact_mesh, options.threads, stats.splay,
+                      found ? &*found : nullptr);
     check.seconds_repair = stats.splay.seconds;
     // Nothing written back: the mesh and so its verdict are the ones validated above.
     if (stats.splay.tetrahedra_removed == 0 && stats.splay.tetrahedra_created == 0) return tets;

@@ -278,12 +278,32 @@ ScanCells scan_cells(const std::vector<Point3>& points, int parts) {
 // (128 KB at 1M points). docs/experiments.md has the orders measured.
 // The first pass also lowers each vertex's lowest live tetrahedron, the threads together with
 // relaxed compare-and-swaps (a thread's own ids only grow, so one rarely retries).
-LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
+// `ordered` false: the first pass's lowest tetrahedra alone (no cells, no list), where no scan
+// is to run.
+LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts, bool ordered) {
   const std::size_t slots = mesh.tets.size();
-  const ScanCells cells = scan_cells(mesh.points, parts);
-  const std::size_t blocks = cells.count;
   LiveTetrahedra live;
   live.lowest_tetrahedron.assign(mesh.points.size(), kNoTet);
+  auto lower_lowest = [&live](const Tet& tet, TetId t) {
+    for (const VertexId v : tet.vertex) {
+      if (v == kInfiniteVertex) continue;
+      std::atomic_ref<TetId> lowest(live.lowest_tetrahedron[v]);
+      TetId seen = lowest.load(std::memory_order_relaxed);
+      while (t < seen && !lowest.compare_exchange_weak(seen, t, std::memory_order_relaxed)) {
+      }
+    }
+  };
+  if (!ordered) {
+    in_parallel_ranges(slots, parts, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const auto t = static_cast<TetId>(i);
+        if (mesh.tets.is_alive(t, std::memory_order_acquire)) lower_lowest(mesh.tets[t], t);
+      }
+    });
+    return live;
+  }
+  const ScanCells cells = scan_cells(mesh.points, parts);
+  const std::size_t blocks = cells.count;
   auto block_of = [&cells](const Tet& t) {
     VertexId low = kInfiniteVertex;  // the largest id: some vertex is finite
     for (const VertexId v : t.vertex) low = std::min(low, v);
@@ -308,13 +328,7 @@ LiveTetrahedra live_tetrahedra(const SharedMesh& mesh, int parts) {
       const std::uint32_t block = block_of(tet);
       block_at[i] = block;
       ++count[block];
-      for (const VertexId v : tet.vertex) {
-        if (v == kInfiniteVertex) continue;
-        std::atomic_ref<TetId> lowest(live.lowest_tetrahedron[v]);
-        TetId seen = lowest.load(std::memory_order_relaxed);
-        while (t < seen && !lowest.compare_exchange_weak(seen, t, std::memory_order_relaxed)) {
-        }
-      }
+      lower_lowest(tet, t);
     }
   });
   // Each part's count becomes where its first tetrahedron of the block goes.
@@ -376,16 +390,20 @@ bool distinct_from_all(const std::vector<Point3>& points, const Quad& q, VertexI
 }  // namespace
 
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
-                       int threads, SplayStats& stats) {
+                       int threads, SplayStats& stats, const ValidatedFindings* validated) {
   const auto t0 = Clock::now();
+  if (validated != nullptr && !exact_mesh) {
+    throw std::logic_error("star splaying: validated findings on a mesh not built exactly");
+  }
   stats.done = true;
   const int parts = std::max(threads, 1);
   stats.scan_threads = static_cast<std::uint64_t>(parts);
   const std::vector<Point3>& points = mesh.points;
   // The live tetrahedra in the scan's order (they also serve the incidence lists and the
-  // write-back below, in that order).
+  // write-back below, in that order); with validated findings, no scan: the lowest tetrahedron
+  // at each vertex alone, the list made below only where a broken mesh needs it.
   const std::size_t slots = mesh.tets.size();
-  const LiveTetrahedra listed = live_tetrahedra(mesh, parts);
+  LiveTetrahedra listed = live_tetrahedra(mesh, parts, validated == nullptr);
   stats.seconds_listing = std::chrono::duration<double>(Clock::now() - t0).count();
   const std::vector<TetId>& live = listed.ordered;
   const std::vector<TetId>& lowest_tetrahedron = listed.lowest_tetrahedron;
@@ -403,71 +421,83 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   // triangle oppositely (seen_oppositely); elsewhere an inexact kernel's mesh has its face tested
   // from both sides, since its two tetrahedra need not agree.
   std::vector<ScanFindings> findings(static_cast<std::size_t>(parts));
-  in_parallel_ranges(live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
-    ScanFindings& found = findings[part];
-    auto note_quad = [&](const Quad& q) {
-      for (const VertexId v : q) {
-        if (v != kInfiniteVertex) found.to_seed.push_back(v);
-      }
-    };
-    // Each neighbour record is a cache miss (its slot is anywhere in the store): they are
-    // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
-    // the misses overlap instead of queueing one behind the other. So are the points: a
-    // tetrahedron's vertices lie far apart in the point array (different BRIO rounds after a
-    // walk, the input's order in DAG mode).
-    constexpr std::size_t kRecordsAhead = 16;
-    constexpr std::size_t kNeighboursAhead = 8;
-    constexpr std::size_t kApexAhead = 4;
-    for (std::size_t k = begin; k < end; ++k) {
-      if (k + kRecordsAhead < end) __builtin_prefetch(&mesh.tets[live[k + kRecordsAhead]]);
-      if (k + kNeighboursAhead < end) {
-        const TetId ahead = live[k + kNeighboursAhead];
-        for (const FaceRef n : mesh.tets[ahead].neighbor) {
-          if (ref_tet(n) > ahead) __builtin_prefetch(&mesh.tets[ref_tet(n)]);
-        }
-        for (const VertexId v : mesh.tets[ahead].vertex) {
-          if (v != kInfiniteVertex) __builtin_prefetch(&points[v]);
-        }
-      }
-      if (k + kApexAhead < end) {
-        const TetId ahead = live[k + kApexAhead];
-        for (const FaceRef n : mesh.tets[ahead].neighbor) {
-          if (ref_tet(n) <= ahead) continue;
-          const VertexId apex = mesh.tets[ref_tet(n)].vertex[static_cast<std::size_t>(ref_face(n))];
-          if (apex != kInfiniteVertex) __builtin_prefetch(&points[apex]);
-        }
-      }
-      const TetId i = live[k];
-      const Tet& t = mesh.tets[i];
-      const bool positive =
-          !t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
-                                              points[t.vertex[2]], points[t.vertex[3]]) > 0;
-      if (!t.is_infinite() && !positive) {
-        ++found.bad_tetrahedra;
-        note_quad(t.vertex);
-      }
-      for (std::size_t f = 0; f < 4; ++f) {
-        const TetId other = ref_tet(t.neighbor[f]);
-        if (other < i) continue;  // each face once
-        const Tet& u = mesh.tets[other];
-        const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
-        const VertexId mine = t.vertex[f];
-        const bool one_side =
-            apex != kInfiniteVertex &&
-            (exact_mesh ||
-             (positive && distinct_from_all(points, t.vertex, apex) &&
-              seen_oppositely(t, f, u, static_cast<std::size_t>(ref_face(t.neighbor[f])))));
-        const bool bad =
-            (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
-            (!one_side && mine != kInfiniteVertex && in_conflict<Exact>(points, u.vertex, mine));
-        if (bad) {
-          ++found.non_delaunay_faces;
-          note_quad(t.vertex);
-          note_quad(u.vertex);
-        }
-      }
+  if (validated != nullptr) {
+    stats.found_by_post_check = true;
+    stats.non_delaunay_faces = validated->rejected_faces;
+    for (const VertexId v : validated->vertices) {
+      if (v >= points.size()) throw std::logic_error("star splaying: a found vertex out of range");
+      seed[v] = 1;
     }
-  });
+  } else {
+    in_parallel_ranges(
+        live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
+          ScanFindings& found = findings[part];
+          auto note_quad = [&](const Quad& q) {
+            for (const VertexId v : q) {
+              if (v != kInfiniteVertex) found.to_seed.push_back(v);
+            }
+          };
+          // Each neighbour record is a cache miss (its slot is anywhere in the store): they are
+          // requested a few tetrahedra ahead, and those tetrahedra's own records further ahead, so
+          // the misses overlap instead of queueing one behind the other. So are the points: a
+          // tetrahedron's vertices lie far apart in the point array (different BRIO rounds after a
+          // walk, the input's order in DAG mode).
+          constexpr std::size_t kRecordsAhead = 16;
+          constexpr std::size_t kNeighboursAhead = 8;
+          constexpr std::size_t kApexAhead = 4;
+          for (std::size_t k = begin; k < end; ++k) {
+            if (k + kRecordsAhead < end) __builtin_prefetch(&mesh.tets[live[k + kRecordsAhead]]);
+            if (k + kNeighboursAhead < end) {
+              const TetId ahead = live[k + kNeighboursAhead];
+              for (const FaceRef n : mesh.tets[ahead].neighbor) {
+                if (ref_tet(n) > ahead) __builtin_prefetch(&mesh.tets[ref_tet(n)]);
+              }
+              for (const VertexId v : mesh.tets[ahead].vertex) {
+                if (v != kInfiniteVertex) __builtin_prefetch(&points[v]);
+              }
+            }
+            if (k + kApexAhead < end) {
+              const TetId ahead = live[k + kApexAhead];
+              for (const FaceRef n : mesh.tets[ahead].neighbor) {
+                if (ref_tet(n) <= ahead) continue;
+                const VertexId apex =
+                    mesh.tets[ref_tet(n)].vertex[static_cast<std::size_t>(ref_face(n))];
+                if (apex != kInfiniteVertex) __builtin_prefetch(&points[apex]);
+              }
+            }
+            const TetId i = live[k];
+            const Tet& t = mesh.tets[i];
+            const bool positive =
+                !t.is_infinite() && Exact::orient3d(points[t.vertex[0]], points[t.vertex[1]],
+                                                    points[t.vertex[2]], points[t.vertex[3]]) > 0;
+            if (!t.is_infinite() && !positive) {
+              ++found.bad_tetrahedra;
+              note_quad(t.vertex);
+            }
+            for (std::size_t f = 0; f < 4; ++f) {
+              const TetId other = ref_tet(t.neighbor[f]);
+              if (other < i) continue;  // each face once
+              const Tet& u = mesh.tets[other];
+              const VertexId apex = u.vertex[static_cast<std::size_t>(ref_face(t.neighbor[f]))];
+              const VertexId mine = t.vertex[f];
+              const bool one_side =
+                  apex != kInfiniteVertex &&
+                  (exact_mesh ||
+                   (positive && distinct_from_all(points, t.vertex, apex) &&
+                    seen_oppositely(t, f, u, static_cast<std::size_t>(ref_face(t.neighbor[f])))));
+              const bool bad =
+                  (apex != kInfiniteVertex && in_conflict<Exact>(points, t.vertex, apex)) ||
+                  (!one_side && mine != kInfiniteVertex &&
+                   in_conflict<Exact>(points, u.vertex, mine));
+              if (bad) {
+                ++found.non_delaunay_faces;
+                note_quad(t.vertex);
+                note_quad(u.vertex);
+              }
+            }
+          }
+        });
+  }
   for (const ScanFindings& found : findings) {
     stats.bad_tetrahedra += found.bad_tetrahedra;
     stats.non_delaunay_faces += found.non_delaunay_faces;
@@ -543,6 +573,9 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     walked = walker.get();
     stars_of_mesh_owned = std::move(walker);
   } else {
+    // The list the listing above skipped (validated findings) is needed here and in the
+    // write-back.
+    if (validated != nullptr) listed.ordered = live_tetrahedra(mesh, parts, true).ordered;
     stars_of_mesh_owned = std::make_unique<SharedMeshStars>(mesh, live, parts);
   }
   const MeshStars& stars_of_mesh = *stars_of_mesh_owned;

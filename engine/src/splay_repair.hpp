@@ -9,6 +9,16 @@
 
 namespace dtlab::engine {
 
+// What an exact validation of the whole mesh found, where it judged the mesh consistent
+// (burglary's post-check: ValidationReport::perturbed_violations and the vertices listed with
+// them, named as the mesh names them). On such a mesh the validator's perturbed tests reject
+// exactly the faces that splay_shared_mesh's exact scan would, so the scan is skipped and these
+// vertices are its seeds (docs/design.md, "The post-check's findings").
+struct ValidatedFindings {
+  std::uint64_t rejected_faces = 0;
+  std::vector<VertexId> vertices;
+};
+
 // Repairs the live tetrahedra of `mesh` (infinite ones included) into the Delaunay
 // tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (those
 // still live), of every non-Delaunay face and of every flat or
@@ -17,8 +27,10 @@ namespace dtlab::engine {
 // `exact_mesh`: the mesh was built with exact predicates (each face is then scanned from one side
 // only). The store pass and the exact scan run on `threads` threads (the run's own); the
 // splaying and the write-back on the caller's. `stats` gets the counts and the times.
+// `validated` (only with `exact_mesh`): the faces found already; no exact scan.
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
-                       int threads, SplayStats& stats);
+                       int threads, SplayStats& stats,
+                       const ValidatedFindings* validated = nullptr);
 
 // The Delaunay tetrahedralization of `points` from any list of tetrahedra on them (ids checked by
 // the caller): every distinct point gets a star, from its neighbours in `tets` (near points for a

@@ -587,6 +587,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"live_marks", r.live_marks},
                   {"marks_seeded", r.marks_seeded},
                   {"proven_by_post_check", r.proven_by_post_check},
+                  {"found_by_post_check", r.found_by_post_check},
                   {"stars_walked", r.stars_walked},
                   {"stars", r.stars},
                   {"offers", r.offers},

@@ -171,9 +171,11 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
   // Every interior face locally Delaunay, tested from its lower tetrahedron in the list's order,
   // where one tetrahedron's points are mostly the last one's, rather than in the buckets' order.
   r.non_delaunay_flags.assign(tets.size(), 0);
-  // Per part: non-Delaunay faces, tied faces, tied faces decided against the perturbation.
+  // Per part: non-Delaunay faces, tied faces, tied faces decided against the perturbation; and
+  // the vertices of the faces the perturbed test rejects (both kinds of violation).
   std::vector<std::array<std::uint64_t, 3>> delaunay_counts(static_cast<std::size_t>(parts),
                                                             {0, 0, 0});
+  std::vector<std::vector<std::uint32_t>> rejected_vertices(static_cast<std::size_t>(parts));
   in_parallel_ranges(tets.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     // A neighbour's record and its apex point can lie anywhere in the list and the point array:
     // requested a few tetrahedra ahead, so that the misses overlap (at 1M uniform points, 2
@@ -200,12 +202,19 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
         const std::uint32_t opposite = tets[other / 4][other % 4];
         auto& [non_delaunay, tied, tied_against] = delaunay_counts[part];
         const int side = K::insphere(pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]], pts[opposite]);
+        bool rejected = side > 0;
         if (side == 0) {
           ++tied;
           if (positive[i] != 0 && predicates::insphere_perturbed<K>(pts[t[0]], pts[t[1]], pts[t[2]],
                                                                     pts[t[3]], pts[opposite]) > 0) {
             ++tied_against;
+            rejected = true;
           }
+        }
+        if (rejected) {
+          std::vector<std::uint32_t>& mine = rejected_vertices[part];
+          mine.insert(mine.end(), t.begin(), t.end());
+          mine.insert(mine.end(), tets[other / 4].begin(), tets[other / 4].end());
         }
         if (side > 0) {
           ++non_delaunay;
@@ -222,6 +231,11 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
     r.non_delaunay_faces += non_delaunay;
     r.tied_faces += tied;
     r.tied_faces_against_perturbation += tied_against;
+  }
+  r.perturbed_violations = r.non_delaunay_faces + r.tied_faces_against_perturbation;
+  for (const std::vector<std::uint32_t>& mine : rejected_vertices) {
+    r.perturbed_violation_vertices.insert(r.perturbed_violation_vertices.end(), mine.begin(),
+                                          mine.end());
   }
   across = {};
   std::vector<std::array<std::uint32_t, 3>> boundary;  // outward-oriented boundary faces
@@ -273,16 +287,25 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
       const int side = K::orient3d(pts[f1[0]], pts[f1[1]], pts[f1[2]], pts[apex]);
       // A flat edge: the apex against the vertex at infinity over f1 (beyond f1, on the outward
       // triple's positive side), as the engine's infinite tetrahedra test it.
+      bool rejected = side > 0;
       if (side == 0) {
         ++r.flat_boundary_edges;
         if (predicates::infinite_insphere_perturbed<K>(pts[f1[0]], pts[f1[1]], pts[f1[2]],
                                                        pts[apex]) > 0) {
           ++r.flat_boundary_edges_against_perturbation;
+          rejected = true;
         }
       }
       if (side > 0) {
         ++r.reflex_boundary_edges;
         near_reflex[edges[i].key[0]] = near_reflex[edges[i].key[1]] = 1;
+      }
+      if (rejected) {  // the face between the infinite tetrahedra over f1 and f2
+        ++r.perturbed_violations;
+        r.perturbed_violation_vertices.insert(r.perturbed_violation_vertices.end(), f1.begin(),
+                                              f1.end());
+        r.perturbed_violation_vertices.insert(r.perturbed_violation_vertices.end(), f2.begin(),
+                                              f2.end());
       }
     }
     i = j;
@@ -455,6 +478,7 @@ std::string ValidationReport::json() const {
   j["tied_faces_against_perturbation"] = tied_faces_against_perturbation;
   j["flat_boundary_edges"] = flat_boundary_edges;
   j["flat_boundary_edges_against_perturbation"] = flat_boundary_edges_against_perturbation;
+  j["perturbed_violations"] = perturbed_violations;
   j["perturbed_delaunay"] = is_perturbed_delaunay();
   j["volume_mismatch"] = volume_mismatch;
   j["volume_excess"] = volume_excess;

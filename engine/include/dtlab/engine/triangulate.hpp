@@ -163,6 +163,10 @@ struct SplayStats {
   // perturbed Delaunay tetrahedralization (ValidationReport::is_perturbed_delaunay), so nothing
   // was scanned or splayed (seconds 0; the proof's time is post_check.seconds_check).
   bool proven_by_post_check = false;
+  // Burglary's post-check found faces to repair on a mesh its validation judged consistent: those
+  // faces (non_delaunay_faces) are the seeds, and the exact scan was skipped (seconds_scan is the
+  // store pass alone; the finding's time is post_check.seconds_check).
+  bool found_by_post_check = false;
   bool stars_walked = false;  // the mesh's stars found by walks, not from incidence lists
   std::uint64_t stars = 0;    // stars built: the seeds and the vertices they reached
   std::uint64_t offers = 0;   // vertices offered to stars
@@ -173,7 +177,7 @@ struct SplayStats {
   std::uint64_t tetrahedra_removed = 0;
   std::uint64_t tetrahedra_created = 0;
   double seconds = 0.0;            // scan, splaying and writing back (included in seconds.total)
-  double seconds_scan = 0.0;       // of which the store pass and the exact scan
+  double seconds_scan = 0.0;       // of which the store pass and the exact scan (if any)
   double seconds_listing = 0.0;    // of which the store pass (the live tetrahedra in scan order)
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };

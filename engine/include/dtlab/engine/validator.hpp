@@ -56,6 +56,14 @@ struct ValidationReport {
   std::string kernel;                      // the kernel that decided: "adaptive" or "exact" (GMP)
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
+  // What the perturbed test rejects: interior faces that are non-Delaunay or tied against the
+  // perturbation, boundary edges that are reflex or flat against it. Counted, and their vertices
+  // listed (a face's two tetrahedra's eight, an edge's two boundary faces' four; unsorted, with
+  // repeats). On a mesh_consistent() mesh these are the faces that star splaying's exact scan
+  // finds, so burglary's post-check hands the list to the repair instead of a second scan
+  // (docs/design.md, "The post-check's findings").
+  std::uint64_t perturbed_violations = 0;
+  std::vector<std::uint32_t> perturbed_violation_vertices;
 
   [[nodiscard]] bool consistent() const;  // everything but the Delaunay property
   // A sound mesh whose boundary may be non-convex: everything but the Delaunay property and the
