@@ -2,12 +2,12 @@
 # Thread scaling on a machine with enough cores (the lent 16-core machine; docs/performance.md):
 #  1. bench/cgal_compare over the thread counts: the sequential walk, every lock method in walk mode
 #     and CGAL (sequential and parallel at the same thread count), interleaved, medians of 3;
-#  2. burglary with cavity insertion, then star splaying (--repair), per thread count and seed:
-#     the run's seconds, the repair's seconds and what the exact scan found.
+#  2. burglary, then star splaying (--repair), per insertion, thread count and seed: the run's
+#     seconds, the repair's seconds and what was found (by the post-check or the repair's scan).
 # Usage: tools/scaling_runs.sh OUTDIR [INPUT] [THREADS] [INSERTION] [PARTS]
 #   INPUT     generator spec or point file (default uniform:1000000)
 #   THREADS   comma-separated thread counts (default 2,4,8,16)
-#   INSERTION what cgal_compare runs: cavity, flips or both (default cavity)
+#   INSERTION what cgal_compare and the repair runs use: cavity, flips or both (default cavity)
 #   PARTS     compare, repair or both (default both). Each repair run also runs the post-check's
 #             exact validation twice (not timed in the run; about 20 s each at 1M points here).
 # DTLAB_BIN names the build directory (default build/release); DTLAB_METHODS the lock methods
@@ -43,22 +43,27 @@ fi
 # One JSON line per run: what the repair cost against the run it repaired.
 repairs="$out/repair_$tag.jsonl"
 : >"$repairs"
+repair_insertions=$insertion
+[[ $insertion == both ]] && repair_insertions="flips cavity"
+for ins in $repair_insertions; do
 for t in "${thread_counts[@]}"; do
   for seed in ${DTLAB_REPAIR_SEEDS:-1 2 3}; do
     stats=$(mktemp)
-    "$bin/cli/dtlab" triangulate "$input" --location walk --insertion cavity --method burglary \
+    "$bin/cli/dtlab" triangulate "$input" --location walk --insertion "$ins" --method burglary \
       --threads "$t" --repair --seed "$seed" --stats "$stats" >/dev/null
-    python3 - "$stats" "$t" "$seed" >>"$repairs" <<'EOF'
+    python3 - "$stats" "$t" "$seed" "$ins" >>"$repairs" <<'EOF'
 import json, sys
 s = json.load(open(sys.argv[1]))
 splay = s.get("splay", {})
 check = s.get("post_check", {})
 print(json.dumps({
-    "threads": int(sys.argv[2]), "seed": int(sys.argv[3]),
+    "insertion": sys.argv[4], "threads": int(sys.argv[2]), "seed": int(sys.argv[3]),
     "seconds_total": s["seconds"]["total"],
     "seconds_repair": check.get("seconds_repair"),
     "seconds_scan": splay.get("seconds_scan"),
     "non_delaunay_faces_found": splay.get("non_delaunay_faces"),
+    # True where those faces are the post-check's (no scan of the repair's own).
+    "found_by_post_check": splay.get("found_by_post_check"),
     "stars": splay.get("stars"),
     # True where the post-check's validation already proved the mesh the unique one: no scan.
     "proven_by_post_check": splay.get("proven_by_post_check"),
@@ -70,5 +75,6 @@ print(json.dumps({
 EOF
     rm -f "$stats"
   done
+done
 done
 cat "$repairs"

@@ -215,6 +215,10 @@ class IncrementalDelaunay {
   // Continues a location that another thread started (the batch method's hint): descends from
   // `start`, which must be a node that contains p, then inserts.
   void set_location_hint(TetId hint) { locator_.set_hint(hint); }
+  // The walk mode's start when no hint is given: the tetrahedron the last insertion created (or
+  // the last location found). The batch method's inserting thread keeps one per locating thread.
+  [[nodiscard]] TetId walk_start() const { return locator_.walk_start(); }
+  void set_walk_start(TetId t) { locator_.remember(t); }
 
   std::vector<Tetrahedron> finite_tetrahedra(VertexId vertex_limit) const {
     return mesh_.finite_tetrahedra(vertex_limit, duplicates_);

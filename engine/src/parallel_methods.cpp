@@ -480,7 +480,18 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     // subdivides and legalizes.
     const int locators = std::max(1, threads - 1);
     const std::size_t capacity = 1024;
-    std::deque<std::pair<std::uint32_t, TetId>> queue;
+    // The queue's lock is taken once per kPush points pushed and kTake points taken, and a full
+    // queue's locating threads sleep until it is half empty: taken once per point, with a wake-up
+    // at every point taken from a full queue, the lock and the wake-ups cost the inserting thread
+    // more than the queue saved it (docs/performance.md, the batch method).
+    constexpr std::size_t kPush = 16;
+    constexpr std::size_t kTake = 64;
+    struct Located {
+      std::uint32_t point;
+      TetId hint;
+      int locator;
+    };
+    std::deque<Located> queue;
     std::mutex queue_mutex;
     std::condition_variable not_full;
     std::condition_variable not_empty;
@@ -500,17 +511,32 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
                                             walk ? &reclaimer : nullptr);
           WorkSource work(dynamic ? nullptr : &locator_parts[index],
                           dynamic ? &shared_index : nullptr, &order);
-          while (const auto v = work.next()) {
-            const TetId hint = dt.locate_only(*v);
-            dt.end_operation();  // the inserting thread checks the hint is still alive
+          std::vector<Located> located;
+          located.reserve(kPush);
+          for (bool more = true; more;) {
+            located.clear();
+            while (located.size() < kPush) {
+              const auto v = work.next();
+              if (!v) {
+                more = false;
+                break;
+              }
+              const TetId hint = dt.locate_only(*v);
+              dt.end_operation();  // the inserting thread checks the hint is still alive
+              located.push_back({*v, hint, i});
+            }
+            if (located.empty()) break;
             std::unique_lock<std::mutex> lock(queue_mutex);
-            if (queue.size() >= capacity) {
+            if (queue.size() + located.size() > capacity) {
               full_waits.fetch_add(1, std::memory_order_relaxed);
-              not_full.wait(lock, [&] { return queue.size() < capacity || table.stop.load(); });
+              not_full.wait(lock,
+                            [&] { return queue.size() <= capacity / 2 || table.stop.load(); });
             }
             if (table.stop.load()) break;
-            queue.emplace_back(*v, hint);
-            not_empty.notify_one();
+            // The inserting thread waits only on an empty queue.
+            const bool was_empty = queue.empty();
+            queue.insert(queue.end(), located.begin(), located.end());
+            if (was_empty) not_empty.notify_one();
           }
           // Merged into the run's stats after the join (the descent's seconds are already there).
           locator_stats[index].predicate_calls = dt.predicate_calls();
@@ -528,9 +554,30 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     IncrementalDelaunay<K, NoSync> dt(mesh, options, thread_stats[0], no_sync,
                                       walk ? &reclaimer : nullptr);
     ThreadStats& counters = stats.threads[0];
-    while (true) {
-      std::pair<std::uint32_t, TetId> item;
-      {
+    // Walk mode: the queue interleaves the locating threads' points, each thread's along its own
+    // share's curve, so the tetrahedron the last insertion created is in another thread's share
+    // as often as not. The inserting thread keeps one walk start per locating thread: what the
+    // insertion of that thread's previous point created. A hint is up to a queue's length of
+    // insertions old, so its slot may have died or been reused anywhere: of the two candidates
+    // that are alive, the walk starts from the one whose first finite vertex is nearer the point
+    // (only this thread writes the mesh, so what it reads is current).
+    std::vector<TetId> start_of(static_cast<std::size_t>(locators), kNoTet);
+    auto squared_distance = [&](TetId t, std::uint32_t p) {
+      const Tet& tet = mesh.tets[t];
+      const VertexId v = tet.vertex[0] != kInfiniteVertex ? tet.vertex[0] : tet.vertex[1];
+      const Point3& a = mesh.points[v];
+      const Point3& b = mesh.points[p];
+      return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z);
+    };
+    auto alive = [&](TetId t) {
+      return t != kNoTet && mesh.tets.is_alive(t, std::memory_order_relaxed);
+    };
+    std::vector<Located> taken;
+    std::size_t next_taken = 0;
+    while (!table.stop.load(std::memory_order_relaxed)) {
+      if (next_taken == taken.size()) {
+        taken.clear();
+        next_taken = 0;
         std::unique_lock<std::mutex> lock(queue_mutex);
         if (queue.empty() && active_locators > 0) {
           ++empty_waits;
@@ -538,17 +585,27 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
               lock, [&] { return !queue.empty() || active_locators == 0 || table.stop.load(); });
         }
         if (queue.empty() || table.stop.load()) break;
-        item = queue.front();
-        queue.pop_front();
-        not_full.notify_one();
+        const auto count = static_cast<std::ptrdiff_t>(std::min(queue.size(), kTake));
+        taken.assign(queue.begin(), queue.begin() + count);
+        queue.erase(queue.begin(), queue.begin() + count);
+        if (queue.size() <= capacity / 2) not_full.notify_all();
       }
-      dt.set_location_hint(item.second);
+      const Located item = taken[next_taken++];
+      TetId start = item.hint;
+      TetId& own = start_of[static_cast<std::size_t>(item.locator)];
+      if (walk && alive(own) &&
+          (!alive(start) ||
+           squared_distance(own, item.point) < squared_distance(start, item.point))) {
+        start = own;
+      }
+      dt.set_location_hint(start);
       try {
-        count_outcome<decltype(dt)>(dt.insert(item.first), counters);
+        count_outcome<decltype(dt)>(dt.insert(item.point), counters);
       } catch (...) {
         record_error();
         break;
       }
+      if (walk) own = dt.walk_start();
       progress.fetch_add(1, std::memory_order_relaxed);
     }
     {

@@ -36,6 +36,7 @@ class PointLocator {
   void set_hint(TetId hint) { hint_ = hint; }
   // The walk mode's next start: near the last point inserted or located.
   void remember(TetId t) { walk_start_ = t; }
+  [[nodiscard]] TetId walk_start() const { return walk_start_; }
 
   [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
   [[nodiscard]] std::uint64_t walk_fallbacks() const { return walk_fallbacks_; }
