@@ -55,9 +55,10 @@ bool first_triangle(const std::vector<predicates::Point3>& p, VertexId x,
 
 void StarSplayer::activate(VertexId x) {
   if (active(x) || canonical_[x] != x) return;  // a duplicate is never a vertex of the result
-  std::vector<Quad> around;
+  std::vector<Quad>& around = activate_around_;
   mesh_.tetrahedra_of(x, around);
-  std::vector<VertexId> candidates;
+  std::vector<VertexId>& candidates = candidates_;
+  candidates.clear();
   for (const Quad& q : around) {
     for (const VertexId y : q) {
       if (y != kInfiniteVertex && canonical_[y] != x) candidates.push_back(canonical_[y]);
@@ -117,19 +118,21 @@ void StarSplayer::offer(VertexId to, VertexId w) {
 }
 
 void StarSplayer::check(VertexId v) {
-  const std::vector<Quad> quads = star_of(v).tetrahedra();  // a copy: offers change the star
+  std::vector<Quad>& quads = check_quads_;  // a copy: offers change the star
+  quads = star_of(v).tetrahedra();
   // The mesh's tetrahedra at v, sorted: whether the mesh at another vertex u of one of v's
   // tetrahedra holds it is whether the mesh at v does (the tetrahedron contains both), so v's
   // list answers for every u without reading u's.
-  std::vector<Quad> around;
+  std::vector<Quad>& around = check_around_;
   mesh_.tetrahedra_of(v, around);
-  std::vector<Quad> mesh_keys(around.size());
+  std::vector<Quad>& mesh_keys = check_keys_;
+  mesh_keys.resize(around.size());
   std::transform(around.begin(), around.end(), mesh_keys.begin(), sorted_quad);
   auto mesh_has = [&](const Quad& key) {
     return std::any_of(mesh_keys.begin(), mesh_keys.end(),
                        [&](const Quad& m) { return same_quad(m, key); });
   };
-  std::vector<VertexId> link;
+  std::vector<VertexId>& link = check_link_;
   for (const Quad& q : quads) {
     const Quad key = sorted_quad(q);
     if (!star_of(v).has(key)) continue;  // left v's star meanwhile

@@ -76,7 +76,15 @@ class StarSplayer {
   std::deque<VertexId> queue_;
   std::vector<char> queued_;
   SplayCounts counts_;
-  std::vector<Quad> removed_;  // scratch
+  // Scratch, kept so that no call allocates once they have grown: offer()'s, activate()'s and
+  // check()'s (activate() runs inside check(), so each has its own).
+  std::vector<Quad> removed_;
+  std::vector<Quad> activate_around_;
+  std::vector<VertexId> candidates_;
+  std::vector<Quad> check_quads_;
+  std::vector<Quad> check_around_;
+  std::vector<Quad> check_keys_;
+  std::vector<VertexId> check_link_;
   StarScratch scratch_;
 };
 

@@ -153,14 +153,18 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
   // Kept quads first, in order; then one new quad per horizon face: the conflict quad with the
   // vertex across the horizon replaced by w (same orientation, as in Bowyer-Watson).
   remap.assign(n, -1);
+  // Each quad's key goes with it: a kept quad's is kept, a new quad's made once.
   std::vector<Quad>& quads = scratch.next_quads;
+  std::vector<Quad>& keys = scratch.next_keys;
   std::vector<std::array<int, 4>>& across = scratch.next_across;
   quads.clear();
+  keys.clear();
   across.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (conflict[i] != 0) continue;
     remap[i] = static_cast<int>(quads.size());
     quads.push_back(quads_[i]);
+    keys.push_back(keys_[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (conflict[i] != 0) continue;
@@ -184,6 +188,7 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
       q[j] = w;
       const int id = static_cast<int>(quads.size());
       quads.push_back(q);
+      keys.push_back(sorted_quad(q));
       across.push_back({-1, -1, -1, -1});
       // The horizon face: link both ways (the kept quad's face is opposite its vertex not in q).
       across.back()[j] = remap[static_cast<std::size_t>(outside)];
@@ -223,8 +228,8 @@ bool VertexStar::offer(const std::vector<predicates::Point3>& points, VertexId w
     }
   }
   std::swap(quads_, quads);  // the old lists become the next offer's scratch
+  std::swap(keys_, keys);
   std::swap(across_, across);
-  make_keys();
   return true;
 }
 

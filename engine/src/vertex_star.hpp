@@ -8,6 +8,8 @@
 // that disk. Decided by exact predicates with the engine's perturbation (conflict.hpp), whatever
 // kernel built the mesh being repaired.
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "conflict.hpp"
@@ -28,6 +30,7 @@ struct StarScratch {
   std::vector<int> stack;
   std::vector<int> remap;
   std::vector<Quad> next_quads;
+  std::vector<Quad> next_keys;
   std::vector<std::array<int, 4>> next_across;
   std::vector<OpenFace> open;
 };
@@ -80,9 +83,14 @@ inline Quad sorted_quad(Quad q) {
 }
 
 // Whether two quads name the same vertices in the same places (inline: std::array's == calls
-// memcmp, and the stars compare quads in their inner loops).
+// memcmp, and the stars compare quads in their inner loops), as two 64-bit words.
 inline bool same_quad(const Quad& a, const Quad& b) {
-  return ((a[0] ^ b[0]) | (a[1] ^ b[1]) | (a[2] ^ b[2]) | (a[3] ^ b[3])) == 0;
+  std::array<std::uint64_t, 2> x{};
+  std::array<std::uint64_t, 2> y{};
+  static_assert(sizeof(x) == sizeof(Quad));
+  std::memcpy(x.data(), a.data(), sizeof(Quad));
+  std::memcpy(y.data(), b.data(), sizeof(Quad));
+  return ((x[0] ^ y[0]) | (x[1] ^ y[1])) == 0;
 }
 
 }  // namespace dtlab::engine
