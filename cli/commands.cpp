@@ -261,14 +261,14 @@ int run_validate(const std::string& points_path, const std::string& mesh,
 }
 
 int run_repair(const std::string& points_path, const std::string& mesh, const std::string& output,
-               const std::string& stats_path, bool validate) {
+               const std::string& stats_path, bool validate, int threads) {
   if (!output.empty() && !ends_with(output, ".ele") && !ends_with(output, ".vtu")) {
     throw std::invalid_argument(output + ": output must end in .ele or .vtu");
   }
   const auto points = io::read_points(points_path);
   const auto tets = io::read_ele(mesh, points.size(), io::node_index_base(points_path));
   engine::SplayStats stats;
-  const auto repaired = engine::repair(points, tets, stats);
+  const auto repaired = engine::repair(points, tets, stats, threads);
   std::optional<engine::ValidationReport> report;
   if (validate)
     report =

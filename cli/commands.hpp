@@ -27,7 +27,7 @@ int run_triangulate(const TriangulateArgs& args);
 int run_validate(const std::string& points, const std::string& mesh, engine::ValidateWith kernel,
                  int threads);
 int run_repair(const std::string& points, const std::string& mesh, const std::string& output,
-               const std::string& stats, bool validate);
+               const std::string& stats, bool validate, int threads);
 int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel);
 
 }  // namespace dtlab::cli

@@ -143,6 +143,12 @@ int main(int argc, char** argv) {
   repair_cmd->add_option("-o,--output", repair_output, "the repaired mesh (.ele or .vtu)");
   repair_cmd->add_option("--stats", repair_stats, "write stats JSON to FILE, or - for stdout");
   repair_cmd->add_flag("--validate", repair_validate, "check the result with the exact validator");
+  int repair_threads = dtlab::engine::kAllThreads;
+  repair_cmd
+      ->add_option("--threads", repair_threads,
+                   "threads that build the stars (default: one per hardware thread; the result is "
+                   "the same for every count)")
+      ->check(CLI::Range(1, 1024));
 
   std::string study;
   dtlab::experiments::ExperimentOptions eopts;
@@ -210,7 +216,7 @@ int main(int argc, char** argv) {
     }
     if (*repair_cmd) {
       return dtlab::cli::run_repair(points_path, mesh_path, repair_output, repair_stats,
-                                    repair_validate);
+                                    repair_validate, repair_threads);
     }
     if (*audit) return dtlab::cli::run_predicates_audit(input, seed, audit_kernel);
     if (*experiment) {

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # README command (b): set up, build and run the test suite with ctest: the release build, an
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything (skip: DTLAB_SKIP_ASAN=1), and a
-# ThreadSanitizer build of the parallel tests and of the validator on several threads (skip:
-# DTLAB_SKIP_TSAN=1), and each libFuzzer
-# harness for a bounded time (scripts/fuzz.sh; skip: DTLAB_SKIP_FUZZ=1).
+# ThreadSanitizer build of the parallel tests, of the validator and of star splaying on several
+# threads (skip: DTLAB_SKIP_TSAN=1), and each libFuzzer harness for a bounded time
+# (scripts/fuzz.sh; skip: DTLAB_SKIP_FUZZ=1).
 # Ends with one plain summary line "N passed, N failed". Exits non-zero when any suite fails to
 # configure or build, reports a failed test, runs no test, or prints no summary line.
 set -euo pipefail
@@ -77,8 +77,8 @@ if [ "${DTLAB_SKIP_ASAN:-0}" != "1" ]; then
   run_suite asan "" "" "-DDTLAB_RC_PARAMS=seed=20261121 max_success=100"
 fi
 if [ "${DTLAB_SKIP_TSAN:-0}" != "1" ]; then
-  run_suite tsan "parallel_test replay_parallel validator_threads_test parallel_ranges_test" \
-    "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel"
+  run_suite tsan "parallel_test replay_parallel validator_threads_test parallel_ranges_test star_splaying_test" \
+    "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel|^SplayTetrahedra\\.EveryThreadCount|^SplaySharedMesh\\.ParallelScan"
 fi
 if [ "${DTLAB_SKIP_FUZZ:-0}" != "1" ]; then
   # Each libFuzzer harness for a bounded time from its corpus (DTLAB_FUZZ_SECONDS, default 45).

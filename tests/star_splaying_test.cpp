@@ -97,6 +97,42 @@ TEST(SplayTetrahedra, AnyStartGivesTheDelaunayMesh) {
   }
 }
 
+// The stars are built on several threads (StarSplayer::activate_all): the counts and the mesh
+// are those of one thread, from garbage (points no tetrahedron uses: their near points come from
+// the grid, built by whichever thread asks first) and from a broken mesh.
+TEST(SplayTetrahedra, EveryThreadCountBuildsTheSameStars) {
+  const auto points = generators::generate("near-duplicates", 3000, 4).points;
+  std::mt19937_64 rng(11);
+  std::vector<engine::Tetrahedron> garbage;
+  for (int i = 0; i < 1500; ++i) {
+    engine::Tetrahedron t{};
+    for (auto& v : t) v = static_cast<VertexId>(rng() % points.size());
+    garbage.push_back(t);
+  }
+  engine::TriangulateOptions fast;
+  fast.kernel = engine::KernelKind::Fast;
+  const auto broken = engine::triangulate(points, fast).tetrahedra;
+  for (const auto& start : {garbage, broken}) {
+    std::vector<engine::SplayStats> all_stats;
+    std::vector<std::vector<engine::Tetrahedron>> results;
+    std::vector<engine::Tetrahedron> repaired;
+    for (const int threads : {1, 3}) {
+      engine::SplayStats stats;
+      repaired = engine::repair(points, start, stats, threads);
+      results.push_back(engine::canonical_tetrahedra(repaired));
+      all_stats.push_back(stats);
+    }
+    EXPECT_GT(all_stats[0].stars, 1000U);
+    EXPECT_EQ(all_stats[0].stars, all_stats[1].stars);
+    EXPECT_EQ(all_stats[0].offers, all_stats[1].offers);
+    EXPECT_EQ(all_stats[0].changes, all_stats[1].changes);
+    EXPECT_EQ(all_stats[0].bridges, all_stats[1].bridges);
+    EXPECT_EQ(results[0], results[1]);
+    const auto report = engine::validate(points, repaired);
+    EXPECT_TRUE(report.is_perturbed_delaunay()) << report.json();
+  }
+}
+
 // Stars that agree can fall apart into pieces: lone tetrahedra whose vertices meet no other
 // input tetrahedron keep their stars to themselves, each piece the Delaunay mesh of its own
 // vertices (a fuzzer found one: 4 points of 100 in a piece, 497 tetrahedra instead of 523). Each
@@ -267,8 +303,9 @@ struct BrokenMesh {
   }
 };
 
-// The scan on several threads finds what it finds on one: the same broken mesh (same forced
-// flips), repaired with 1 and with 3 scan threads, gives the same counts, stars and tetrahedra.
+// The scan and the stars' building on several threads find what they find on one: the same
+// broken mesh (same forced flips), repaired with 1 and with 3 threads, gives the same counts,
+// stars and tetrahedra.
 TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
   const auto points = generators::generate("uniform", 6000, 8).points;
   const auto limit = static_cast<VertexId>(points.size());
@@ -288,7 +325,10 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
   EXPECT_GT(all_stats[0].non_delaunay_faces, 0U);
   EXPECT_EQ(all_stats[0].non_delaunay_faces, all_stats[1].non_delaunay_faces);
   EXPECT_EQ(all_stats[0].seeds, all_stats[1].seeds);
+  EXPECT_GT(all_stats[0].seeds, 64U);  // enough for the stars to be built on several threads
   EXPECT_EQ(all_stats[0].stars, all_stats[1].stars);
+  EXPECT_EQ(all_stats[0].offers, all_stats[1].offers);
+  EXPECT_EQ(all_stats[0].changes, all_stats[1].changes);
   EXPECT_EQ(results[0], results[1]);
 }
 

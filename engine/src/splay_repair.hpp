@@ -36,6 +36,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
 // the caller): every distinct point gets a star, from its neighbours in `tets` (near points for a
 // point no tetrahedron uses). Duplicate points are named by their lowest index.
 std::vector<Tetrahedron> splay_tetrahedra(const std::vector<Point3>& points,
-                                          const std::vector<Tetrahedron>& tets, SplayStats& stats);
+                                          const std::vector<Tetrahedron>& tets, SplayStats& stats,
+                                          int threads = 1);
 
 }  // namespace dtlab::engine

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "dtlab/predicates/kernels.hpp"
+#include "parallel_ranges.hpp"
 
 namespace dtlab::engine {
 
@@ -53,11 +54,10 @@ bool first_triangle(const std::vector<predicates::Point3>& p, VertexId x,
 
 }  // namespace
 
-void StarSplayer::activate(VertexId x) {
-  if (active(x) || canonical_[x] != x) return;  // a duplicate is never a vertex of the result
-  std::vector<Quad>& around = activate_around_;
+void StarSplayer::build_star(VertexId x, VertexStar& star, BuildScratch& scratch) const {
+  std::vector<Quad>& around = scratch.around;
   mesh_.tetrahedra_of(x, around);
-  std::vector<VertexId>& candidates = candidates_;
+  std::vector<VertexId>& candidates = scratch.candidates;
   candidates.clear();
   for (const Quad& q : around) {
     for (const VertexId y : q) {
@@ -80,18 +80,62 @@ void StarSplayer::activate(VertexId x) {
       throw std::logic_error("star splaying: the pool does not span 3D");
     }
   }
+  ++scratch.counts.stars;
+  star.start(points_, x, abc[0], abc[1], abc[2]);
+  for (const VertexId y : candidates) {
+    if (y == x) continue;
+    ++scratch.counts.offers;
+    scratch.removed.clear();
+    if (star.offer(points_, y, scratch.removed, scratch.star)) ++scratch.counts.changes;
+  }
+}
+
+namespace {
+
+void add_counts(SplayCounts& to, SplayCounts& from) {
+  to.stars += from.stars;
+  to.offers += from.offers;
+  to.changes += from.changes;
+  from = {};
+}
+
+}  // namespace
+
+void StarSplayer::activate(VertexId x) {
+  if (active(x) || canonical_[x] != x) return;  // a duplicate is never a vertex of the result
   slot_[x] = static_cast<int>(stars_.size());
   stars_.emplace_back();
   active_.push_back(x);
-  ++counts_.stars;
-  star_of(x).start(points_, x, abc[0], abc[1], abc[2]);
-  for (const VertexId y : candidates) {
-    if (y == x) continue;
-    ++counts_.offers;
-    removed_.clear();
-    if (star_of(x).offer(points_, y, removed_, scratch_)) ++counts_.changes;
-  }
+  build_star(x, star_of(x), build_);
+  add_counts(counts_, build_.counts);
   enqueue(x);
+}
+
+void StarSplayer::activate_all(const std::vector<VertexId>& xs, int threads) {
+  // Slots first, in order (stars_ does not grow while the threads write into it).
+  const std::size_t first = stars_.size();
+  for (const VertexId x : xs) {
+    if (active(x) || canonical_[x] != x) continue;
+    slot_[x] = static_cast<int>(stars_.size());
+    stars_.emplace_back();
+    active_.push_back(x);
+  }
+  const std::size_t built = stars_.size() - first;
+  const int parts = std::max(threads, 1);
+  std::vector<BuildScratch> scratch(static_cast<std::size_t>(parts));
+  // A star takes tens of microseconds: threads pay off from a few dozen stars on.
+  constexpr std::size_t kMinimumStars = 64;
+  in_parallel_ranges(
+      built, parts,
+      [&](std::size_t begin, std::size_t end, std::size_t part) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const VertexId x = active_[first + i];
+          build_star(x, stars_[first + i], scratch[part]);
+        }
+      },
+      kMinimumStars);
+  for (BuildScratch& mine : scratch) add_counts(counts_, mine.counts);
+  for (std::size_t i = first; i < stars_.size(); ++i) enqueue(active_[i]);
 }
 
 void StarSplayer::enqueue(VertexId x) {

@@ -21,6 +21,7 @@ class MeshStars {
   MeshStars& operator=(const MeshStars&) = delete;
   virtual ~MeshStars() = default;
   // The mesh's tetrahedra that contain x (the vertex at infinity included where the mesh has it).
+  // Called by several threads at once (StarSplayer::activate_all).
   virtual void tetrahedra_of(VertexId x, std::vector<Quad>& out) const = 0;
 };
 
@@ -42,6 +43,10 @@ class StarSplayer {
 
   // Builds x's star from the mesh's neighbours of x and queues it for the consistency check.
   void activate(VertexId x);
+  // activate(x) for each x of `xs`, in order, the stars built on `threads` threads: a new star
+  // reads only the mesh and the points, so the stars, slots, counts and queue are those of
+  // activating one by one, whatever the thread count (`near`, when called, too).
+  void activate_all(const std::vector<VertexId>& xs, int threads);
   // Consistency enforcement until the queue is empty: then every active star's tetrahedron is in
   // the star of each of its active vertices and in the mesh at each inactive one, and every
   // tetrahedron of the mesh at an active vertex with an inactive vertex is in the active star.
@@ -60,6 +65,17 @@ class StarSplayer {
   [[nodiscard]] const SplayCounts& counts() const { return counts_; }
 
  private:
+  // What building one star needs for itself (one per thread in activate_all).
+  struct BuildScratch {
+    std::vector<Quad> around;
+    std::vector<VertexId> candidates;
+    std::vector<Quad> removed;
+    StarScratch star;
+    SplayCounts counts;
+  };
+  // x's star from the mesh's neighbours of x, into `star` (a fresh one).
+  void build_star(VertexId x, VertexStar& star, BuildScratch& scratch) const;
+
   VertexStar& star_of(VertexId x) { return stars_[static_cast<std::size_t>(slot_[x])]; }
   void offer(VertexId to, VertexId w);
   void enqueue(VertexId x);
@@ -79,8 +95,7 @@ class StarSplayer {
   // Scratch, kept so that no call allocates once they have grown: offer()'s, activate()'s and
   // check()'s (activate() runs inside check(), so each has its own).
   std::vector<Quad> removed_;
-  std::vector<Quad> activate_around_;
-  std::vector<VertexId> candidates_;
+  BuildScratch build_;
   std::vector<Quad> check_quads_;
   std::vector<Quad> check_around_;
   std::vector<Quad> check_keys_;

@@ -58,17 +58,18 @@ class TetIdSet {
 // x are those reached from one of them across faces that contain x, since the star of a vertex of
 // a triangulation (closed by the infinite tetrahedra) is connected through those faces. Not for a
 // broken mesh, whose star need not be connected: the incidence lists serve there.
-// `some_tetrahedron[x]`: a live tetrahedron at x, kNoTet where x is no vertex. One thread at a
-// time (the walk's scratch is the object's).
+// `some_tetrahedron[x]`: a live tetrahedron at x, kNoTet where x is no vertex. Several threads
+// may ask at once (StarSplayer::activate_all): the walk's scratch is each thread's own.
 class WalkedMeshStars : public MeshStars {
  public:
   WalkedMeshStars(const SharedMesh& mesh, const std::vector<TetId>& some_tetrahedron)
       : mesh_(mesh), some_tetrahedron_(some_tetrahedron) {}
 
   void tetrahedra_of(VertexId x, std::vector<Quad>& out) const override {
-    tetrahedron_ids_of(x, ids_);
+    std::vector<TetId>& ids = scratch().ids;
+    tetrahedron_ids_of(x, ids);
     out.clear();
-    for (const TetId t : ids_) out.push_back(mesh_.tets[t].vertex);
+    for (const TetId t : ids) out.push_back(mesh_.tets[t].vertex);
   }
 
   // The same tetrahedra as ids, in the order the walk met them.
@@ -76,12 +77,14 @@ class WalkedMeshStars : public MeshStars {
     out.clear();
     const TetId start = some_tetrahedron_[x];
     if (start == kNoTet) return;
-    visited_.clear();
-    visited_.insert(start);
-    to_visit_.assign(1, start);
-    while (!to_visit_.empty()) {
-      const TetId t = to_visit_.back();
-      to_visit_.pop_back();
+    TetIdSet& visited = scratch().visited;
+    std::vector<TetId>& to_visit = scratch().to_visit;
+    visited.clear();
+    visited.insert(start);
+    to_visit.assign(1, start);
+    while (!to_visit.empty()) {
+      const TetId t = to_visit.back();
+      to_visit.pop_back();
       out.push_back(t);
       const Tet& tet = mesh_.tets[t];
       const int at = tet.index_of(x);
@@ -95,17 +98,24 @@ class WalkedMeshStars : public MeshStars {
                                  " do not share vertex " + std::to_string(x) +
                                  " (the mesh's references are not mutual)");
         }
-        if (visited_.insert(next)) to_visit_.push_back(next);
+        if (visited.insert(next)) to_visit.push_back(next);
       }
     }
   }
 
  private:
+  struct WalkScratch {
+    TetIdSet visited;
+    std::vector<TetId> to_visit;
+    std::vector<TetId> ids;
+  };
+  static WalkScratch& scratch() {
+    thread_local WalkScratch mine;
+    return mine;
+  }
+
   const SharedMesh& mesh_;
   const std::vector<TetId>& some_tetrahedron_;
-  mutable TetIdSet visited_;
-  mutable std::vector<TetId> to_visit_;
-  mutable std::vector<TetId> ids_;
 };
 
 }  // namespace dtlab::engine

@@ -4,13 +4,16 @@
 #include <vector>
 
 #include "dtlab/engine/triangulate.hpp"
+#include "dtlab/engine/validator.hpp"
 
 namespace dtlab::engine {
 
 // Every vertex id must be below points.size() (the readers check it). Throws TriangulationError
 // when the points have a NaN or infinite coordinate or span less than 3D. Duplicate points are
-// named by their lowest index, as in triangulate().
+// named by their lowest index, as in triangulate(). `threads` build the stars (kAllThreads: one per
+// hardware thread); the result and the counts are the same for every count.
 std::vector<Tetrahedron> repair(const std::vector<Point3>& points,
-                                const std::vector<Tetrahedron>& tets, SplayStats& stats);
+                                const std::vector<Tetrahedron>& tets, SplayStats& stats,
+                                int threads = 1);
 
 }  // namespace dtlab::engine
