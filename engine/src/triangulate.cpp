@@ -599,6 +599,8 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"seconds", r.seconds},
                   {"seconds_scan", r.seconds_scan},
                   {"seconds_listing", r.seconds_listing},
+                  {"seconds_building", r.seconds_building},
+                  {"seconds_enforcing", r.seconds_enforcing},
                   {"scan_threads", r.scan_threads}};
   }
   j["repair"] = to_string(options.repair);

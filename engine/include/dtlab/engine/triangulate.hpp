@@ -176,9 +176,15 @@ struct SplayStats {
   std::uint64_t bridges = 0;
   std::uint64_t tetrahedra_removed = 0;
   std::uint64_t tetrahedra_created = 0;
-  double seconds = 0.0;            // scan, splaying and writing back (included in seconds.total)
-  double seconds_scan = 0.0;       // of which the store pass and the exact scan (if any)
-  double seconds_listing = 0.0;    // of which the store pass (the live tetrahedra in scan order)
+  double seconds = 0.0;          // scan, splaying and writing back (included in seconds.total)
+  double seconds_scan = 0.0;     // of which the store pass and the exact scan (if any)
+  double seconds_listing = 0.0;  // of which the store pass (the live tetrahedra in scan order)
+  // Burglary's and the fast kernel's repair: of `seconds`, building the seeds' stars (on the
+  // run's threads) and the consistency enforcement from them (one thread; a broken mesh's
+  // further rounds, `regrown`, not included). The rest is the scan, the grouping of equal points
+  // and the write-back.
+  double seconds_building = 0.0;
+  double seconds_enforcing = 0.0;
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };
 
