@@ -5,11 +5,27 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <string>
 
 #include "commands.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/experiments/experiment.hpp"
 #include "dtlab/io/input_error.hpp"
+
+namespace {
+
+// --threads for a command whose result is the same for every count (default: one per hardware
+// thread).
+void add_threads_option(CLI::App* command, int& threads, const char* what) {
+  command
+      ->add_option(
+          "--threads", threads,
+          std::string(what) +
+              " (default: one per hardware thread; the result is the same for every count)")
+      ->check(CLI::Range(1, 1024));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using dtlab::engine::Bounding;
@@ -125,11 +141,7 @@ int main(int argc, char** argv) {
                    "the validator's kernel: adaptive (default) | exact (GMP, independent)")
       ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
   int validate_threads = dtlab::engine::kAllThreads;
-  validate
-      ->add_option("--threads", validate_threads,
-                   "threads that share the checks (default: one per hardware thread; the report "
-                   "is the same for every count)")
-      ->check(CLI::Range(1, 1024));
+  add_threads_option(validate, validate_threads, "threads that share the checks");
 
   std::string repair_output;
   std::string repair_stats;
@@ -144,11 +156,7 @@ int main(int argc, char** argv) {
   repair_cmd->add_option("--stats", repair_stats, "write stats JSON to FILE, or - for stdout");
   repair_cmd->add_flag("--validate", repair_validate, "check the result with the exact validator");
   int repair_threads = dtlab::engine::kAllThreads;
-  repair_cmd
-      ->add_option("--threads", repair_threads,
-                   "threads that build the stars (default: one per hardware thread; the result is "
-                   "the same for every count)")
-      ->check(CLI::Range(1, 1024));
+  add_threads_option(repair_cmd, repair_threads, "threads that build the stars");
 
   std::string study;
   dtlab::experiments::ExperimentOptions eopts;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # dtlab repair: the fast kernel's mesh of a sphere (broken) and a Delaunay mesh with one
-# tetrahedron dropped (a hole) become the Delaunay mesh, equal to the exact triangulation; a mesh
-# that names a vertex the points do not have, or an unreadable file, is an error (exit 2).
+# tetrahedron dropped (a hole) become the Delaunay mesh, equal to the exact triangulation, the same
+# on 1 and on 3 threads; a mesh that names a vertex the points do not have, or an unreadable
+# file, is an error (exit 2).
 set -euo pipefail
 dtlab="$1"
 dir=$(mktemp -d)
@@ -21,6 +22,16 @@ fi
   --stats "$dir/stats.json" >/dev/null
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["validation_valid"] and d["stars"] == 3000, d' "$dir/stats.json"
 diff <(sorted "$dir/exact.ele") <(sorted "$dir/repaired.ele") >/dev/null
+# The stars built on 1 and on 3 threads: the same mesh, line for line, and the same counts.
+for t in 1 3; do
+  "$dtlab" repair "$dir/fast.node" "$dir/fast.ele" --threads "$t" -o "$dir/t$t.ele" \
+    --stats "$dir/t$t.json" >/dev/null
+done
+cmp "$dir/t1.ele" "$dir/t3.ele"
+python3 -c 'import json,sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert all(a[k] == b[k] for k in ("stars", "offers", "changes", "bridges")), (a, b)' \
+  "$dir/t1.json" "$dir/t3.json"
 # A hole: the first tetrahedron dropped.
 python3 -c 'import sys
 lines = [l for l in open(sys.argv[1]) if not l.startswith("#")]
