@@ -318,6 +318,7 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
     engine::SplayStats stats;
     engine::splay_shared_mesh(dt.mesh(), {}, true, threads, stats);
     EXPECT_EQ(stats.scan_threads, static_cast<std::uint64_t>(threads));
+    EXPECT_TRUE(stats.stars_walked);  // the walks' per-thread scratch is what runs here
     EXPECT_TRUE(engine::validate(points, dt.finite_tetrahedra(limit)).valid()) << threads;
     results.push_back(engine::canonical_tetrahedra(dt.finite_tetrahedra(limit)));
     all_stats.push_back(stats);
@@ -337,6 +338,10 @@ TEST(SplaySharedMesh, ParallelScanFindsWhatOneThreadFinds) {
 // cospherical points, where only the perturbation rejects a face), the validator's findings and
 // the exact scan's must be the same faces and seeds, and give the same stars and mesh.
 TEST(SplaySharedMesh, ValidatedFindingsAreTheScansFindings) {
+  // What the damage held, over the families: faces only the perturbation rejects, and rejected
+  // boundary edges (the infinite tetrahedra's faces), so that both kinds were compared.
+  std::uint64_t rejected_ties = 0;
+  std::uint64_t rejected_boundary_edges = 0;
   for (const std::string family : {"uniform", "grid", "cospherical"}) {
     const auto points = generators::generate(family, 3000, 3).points;
     const auto limit = static_cast<VertexId>(points.size());
@@ -345,14 +350,18 @@ TEST(SplaySharedMesh, ValidatedFindingsAreTheScansFindings) {
     for (const bool from_validation : {false, true}) {
       BrokenMesh broken(points);
       ASSERT_EQ(broken.force_flips(60, 21), 60) << family;
-      const engine::ValidationReport report =
-          engine::validate(points, broken.dt.finite_tetrahedra(limit));
+      const engine::ValidationReport report = engine::validate(
+          points, broken.dt.finite_tetrahedra(limit), engine::ValidateWith::Adaptive, 1, true);
       ASSERT_TRUE(report.mesh_consistent()) << family << report.json();
       ASSERT_GT(report.perturbed_violations, 0U) << family;
-      engine::ValidatedFindings found;
-      found.rejected_faces = report.perturbed_violations;
-      found.vertices.assign(report.perturbed_violation_vertices.begin(),
-                            report.perturbed_violation_vertices.end());
+      if (from_validation) {
+        rejected_ties += report.tied_faces_against_perturbation;
+        rejected_boundary_edges +=
+            report.reflex_boundary_edges + report.flat_boundary_edges_against_perturbation;
+      }
+      // No equal points here: the output's names are the mesh's.
+      const engine::ValidatedFindings found = engine::validated_findings(report, points.size(), {});
+      ASSERT_EQ(found.vertices.size(), report.perturbed_violation_vertices.size());
       engine::SplayStats stats;
       engine::splay_shared_mesh(broken.dt.mesh(), {}, true, 2, stats,
                                 from_validation ? &found : nullptr);
@@ -369,6 +378,22 @@ TEST(SplaySharedMesh, ValidatedFindingsAreTheScansFindings) {
     EXPECT_EQ(all_stats[0].tetrahedra_created, all_stats[1].tetrahedra_created) << family;
     EXPECT_EQ(results[0], results[1]) << family;
   }
+  EXPECT_GT(rejected_ties, 0U);
+  EXPECT_GT(rejected_boundary_edges, 0U);
+}
+
+// The findings renamed to the mesh's vertices: the output names each set of equal points by its
+// lowest index, the mesh by the point that was inserted; other vertices keep their ids.
+TEST(SplaySharedMesh, ValidatedFindingsAreRenamedToTheInsertedPoints) {
+  engine::ValidationReport report;
+  report.perturbed_violations = 2;
+  // Points 1, 4 and 6 are equal and 6 was inserted (the output calls it 1); points 2 and 5 are
+  // equal and 2 was inserted (the output calls it 2); the others are alone.
+  report.perturbed_violation_vertices = {0, 1, 2, 3, 1, 7, 2, 0};
+  const std::vector<std::pair<VertexId, VertexId>> duplicates = {{1, 6}, {4, 6}, {5, 2}};
+  const engine::ValidatedFindings found = engine::validated_findings(report, 8, duplicates);
+  EXPECT_EQ(found.rejected_faces, 2U);
+  EXPECT_EQ(found.vertices, (std::vector<VertexId>{0, 6, 2, 3, 6, 7, 2, 0}));
 }
 
 // The local repair of the engine's mesh: forced flips break it; splaying from the broken faces

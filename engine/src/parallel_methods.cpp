@@ -10,7 +10,6 @@
 #include <deque>
 #include <exception>
 #include <mutex>
-#include <numeric>
 #include <optional>
 #include <thread>
 #include <unordered_map>
@@ -174,27 +173,6 @@ void count_outcome(typename Dt::Outcome outcome, ThreadStats& t) {
   }
 }
 
-// The post-check's rejected faces as star splaying's seeds: their vertices renamed from the
-// output's names (each set of equal points by its lowest index, SharedMesh::finite_tetrahedra)
-// back to the mesh's (the point of the set that was inserted).
-ValidatedFindings validated_findings(const ValidationReport& report, std::size_t input_count,
-                                     const std::vector<std::pair<VertexId, VertexId>>& duplicates) {
-  std::vector<VertexId> mesh_vertex(input_count);
-  std::iota(mesh_vertex.begin(), mesh_vertex.end(), VertexId{0});
-  std::vector<VertexId> output_name = mesh_vertex;
-  for (const auto& [duplicate, vertex] : duplicates) {
-    output_name[vertex] = std::min(output_name[vertex], duplicate);
-  }
-  for (const auto& [duplicate, vertex] : duplicates) mesh_vertex[output_name[vertex]] = vertex;
-  ValidatedFindings found;
-  found.rejected_faces = report.perturbed_violations;
-  found.vertices.reserve(report.perturbed_violation_vertices.size());
-  for (const std::uint32_t v : report.perturbed_violation_vertices) {
-    found.vertices.push_back(mesh_vertex.at(v));
-  }
-  return found;
-}
-
 // Burglary's sequential post-check: the exact validator's count after the parallel run; with
 // --repair, Lawson flips on the marked tetrahedra, then (only if the validator still finds
 // non-Delaunay faces) on every tetrahedron. Flips can get stuck in 3D: what they leave is reported
@@ -219,7 +197,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   ValidationReport report;  // the latest stage's
   auto count = [&](const std::vector<Tetrahedron>& tets) {
     const auto t0 = Clock::now();
-    report = validate(input, tets, ValidateWith::Adaptive, kAllThreads);
+    report = validate(input, tets, ValidateWith::Adaptive, kAllThreads, true);
     check.seconds_check += std::chrono::duration<double>(Clock::now() - t0).count();
     check.non_delaunay_faces_after = report.non_delaunay_faces;
     check.reflex_boundary_edges_after = report.reflex_boundary_edges;
@@ -480,10 +458,11 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     // subdivides and legalizes.
     const int locators = std::max(1, threads - 1);
     const std::size_t capacity = 1024;
-    // The queue's lock is taken once per kPush points pushed and kTake points taken, and a full
-    // queue's locating threads sleep until it is half empty: taken once per point, with a wake-up
-    // at every point taken from a full queue, the lock and the wake-ups cost the inserting thread
-    // more than the queue saved it (docs/performance.md, the batch method).
+    // The queue's lock is taken once per kPush points pushed and kTake points taken, and a
+    // locating thread that finds the queue full sleeps until a take leaves it half empty (all
+    // sleepers are woken then, and each has room for its points): taken once per point, with a
+    // wake-up at every point taken from a full queue, the lock and the wake-ups cost the
+    // inserting thread more than the queue saved it (docs/performance.md, the batch method).
     constexpr std::size_t kPush = 16;
     constexpr std::size_t kTake = 64;
     struct Located {
@@ -498,6 +477,12 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     int active_locators = locators;
     std::atomic<std::uint64_t> full_waits{0};
     std::uint64_t empty_waits = 0;
+    // The inserting thread's lists, allocated before the locating threads start, so that their
+    // allocations cannot fail while those run (an exception outside the loops' handlers then
+    // would leave the threads joinable).
+    std::vector<Located> taken;
+    taken.reserve(kTake);
+    std::vector<TetId> start_of(static_cast<std::size_t>(locators), kNoTet);
     auto locator_parts = dynamic ? std::vector<std::vector<std::uint32_t>>{}
                                  : distribute(points, order, distribution, locators);
     std::vector<std::thread> pool;
@@ -529,8 +514,9 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
             std::unique_lock<std::mutex> lock(queue_mutex);
             if (queue.size() + located.size() > capacity) {
               full_waits.fetch_add(1, std::memory_order_relaxed);
-              not_full.wait(lock,
-                            [&] { return queue.size() <= capacity / 2 || table.stop.load(); });
+              not_full.wait(lock, [&] {
+                return queue.size() + located.size() <= capacity || table.stop.load();
+              });
             }
             if (table.stop.load()) break;
             // The inserting thread waits only on an empty queue.
@@ -561,7 +547,6 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     // insertions old, so its slot may have died or been reused anywhere: of the two candidates
     // that are alive, the walk starts from the one whose first finite vertex is nearer the point
     // (only this thread writes the mesh, so what it reads is current).
-    std::vector<TetId> start_of(static_cast<std::size_t>(locators), kNoTet);
     auto squared_distance = [&](TetId t, std::uint32_t p) {
       const Tet& tet = mesh.tets[t];
       const VertexId v = tet.vertex[0] != kInfiniteVertex ? tet.vertex[0] : tet.vertex[1];
@@ -572,7 +557,6 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     auto alive = [&](TetId t) {
       return t != kNoTet && mesh.tets.is_alive(t, std::memory_order_relaxed);
     };
-    std::vector<Located> taken;
     std::size_t next_taken = 0;
     while (!table.stop.load(std::memory_order_relaxed)) {
       if (next_taken == taken.size()) {
@@ -585,10 +569,13 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
               lock, [&] { return !queue.empty() || active_locators == 0 || table.stop.load(); });
         }
         if (queue.empty() || table.stop.load()) break;
-        const auto count = static_cast<std::ptrdiff_t>(std::min(queue.size(), kTake));
+        const std::size_t before = queue.size();
+        const auto count = static_cast<std::ptrdiff_t>(std::min(before, kTake));
         taken.assign(queue.begin(), queue.begin() + count);
         queue.erase(queue.begin(), queue.begin() + count);
-        if (queue.size() <= capacity / 2) not_full.notify_all();
+        // A locating thread waits only at a queue of more than capacity - kPush points, so one
+        // take in every descent from there crosses half (none is missed).
+        if (before > capacity / 2 && queue.size() <= capacity / 2) not_full.notify_all();
       }
       const Located item = taken[next_taken++];
       TetId start = item.hint;

@@ -399,6 +399,24 @@ bool distinct_from_all(const std::vector<Point3>& points, const Quad& q, VertexI
 
 }  // namespace
 
+ValidatedFindings validated_findings(const ValidationReport& report, std::size_t input_count,
+                                     const std::vector<std::pair<VertexId, VertexId>>& duplicates) {
+  std::vector<VertexId> mesh_vertex(input_count);
+  std::iota(mesh_vertex.begin(), mesh_vertex.end(), VertexId{0});
+  std::vector<VertexId> output_name = mesh_vertex;
+  for (const auto& [duplicate, vertex] : duplicates) {
+    output_name[vertex] = std::min(output_name[vertex], duplicate);
+  }
+  for (const auto& [duplicate, vertex] : duplicates) mesh_vertex[output_name[vertex]] = vertex;
+  ValidatedFindings found;
+  found.rejected_faces = report.perturbed_violations;
+  found.vertices.reserve(report.perturbed_violation_vertices.size());
+  for (const std::uint32_t v : report.perturbed_violation_vertices) {
+    found.vertices.push_back(mesh_vertex.at(v));
+  }
+  return found;
+}
+
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
                        int threads, SplayStats& stats, const ValidatedFindings* validated) {
   const auto t0 = Clock::now();

@@ -2,9 +2,11 @@
 // Star splaying applied: to the engine's shared mesh after a run (burglary's marks, the fast
 // kernel's errors), and to any tetrahedron list (dtlab repair). Exact predicates throughout.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "dtlab/engine/triangulate.hpp"
+#include "dtlab/engine/validator.hpp"
 #include "shared_mesh.hpp"
 
 namespace dtlab::engine {
@@ -19,6 +21,13 @@ struct ValidatedFindings {
   std::vector<VertexId> vertices;
 };
 
+// The findings of a validation of SharedMesh::finite_tetrahedra's output (listed:
+// validate(..., true)) in the mesh's names: the output names each set of equal points by its
+// lowest index, the mesh by the point of the set that was inserted. `duplicates`: the engine's
+// (skipped point, its vertex) pairs, as finite_tetrahedra took them.
+ValidatedFindings validated_findings(const ValidationReport& report, std::size_t input_count,
+                                     const std::vector<std::pair<VertexId, VertexId>>& duplicates);
+
 // Repairs the live tetrahedra of `mesh` (infinite ones included) into the Delaunay
 // tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (those
 // still live), of every non-Delaunay face and of every flat or
@@ -27,7 +36,10 @@ struct ValidatedFindings {
 // `exact_mesh`: the mesh was built with exact predicates (each face is then scanned from one side
 // only). The store pass and the exact scan run on `threads` threads (the run's own); the
 // splaying and the write-back on the caller's. `stats` gets the counts and the times.
-// `validated` (only with `exact_mesh`): the faces found already; no exact scan.
+// `validated`: the faces found already; no exact scan. Only for a mesh built exactly
+// (`exact_mesh`, checked), with the vertex at infinity (no auxiliary vertices, which the
+// validation of finite tetrahedra does not see) and judged mesh_consistent() by that validation
+// (the one-sided tests and the walks around vertices rely on it): the caller's to ensure.
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
                        int threads, SplayStats& stats,
                        const ValidatedFindings* validated = nullptr);

@@ -72,7 +72,7 @@ struct FaceFindings {
 // report does not depend on the thread count.
 template <class K>
 void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets, int threads,
-           ValidationReport& r) {
+           bool list_violations, ValidationReport& r) {
   const std::size_t n = pts.size();
   const int parts = std::max(threads, 1);
   // Per tetrahedron: usable (valid, distinct vertex ids) and positive (usable and positively
@@ -211,7 +211,7 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
             rejected = true;
           }
         }
-        if (rejected) {
+        if (rejected && list_violations) {
           std::vector<std::uint32_t>& mine = rejected_vertices[part];
           mine.insert(mine.end(), t.begin(), t.end());
           mine.insert(mine.end(), tets[other / 4].begin(), tets[other / 4].end());
@@ -302,10 +302,11 @@ void check(const std::vector<Point3>& pts, const std::vector<Tetrahedron>& tets,
       }
       if (rejected) {  // the face between the infinite tetrahedra over f1 and f2
         ++r.perturbed_violations;
-        r.perturbed_violation_vertices.insert(r.perturbed_violation_vertices.end(), f1.begin(),
-                                              f1.end());
-        r.perturbed_violation_vertices.insert(r.perturbed_violation_vertices.end(), f2.begin(),
-                                              f2.end());
+        if (list_violations) {
+          std::vector<std::uint32_t>& all = r.perturbed_violation_vertices;
+          all.insert(all.end(), f1.begin(), f1.end());
+          all.insert(all.end(), f2.begin(), f2.end());
+        }
       }
     }
     i = j;
@@ -494,7 +495,7 @@ const char* to_string(ValidateWith k) {
 }
 
 ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets,
-                          ValidateWith kernel, int threads) {
+                          ValidateWith kernel, int threads, bool list_perturbed_violations) {
   ValidationReport r;
   r.points = points.size();
   r.tetrahedra = tets.size();
@@ -519,7 +520,8 @@ ValidationReport validate(const std::vector<Point3>& points, const std::vector<T
   if (threads == kAllThreads)
     threads = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
   if (kernel == ValidateWith::Exact) {
-    check<predicates::ExactKernel>(points, tets, threads, r);  // the independent reference
+    check<predicates::ExactKernel>(points, tets, threads, list_perturbed_violations,
+                                   r);  // the independent reference
     return r;
   }
   // The adaptive kernel is exact for every finite double (GMP fallback outside the expansion
@@ -531,9 +533,9 @@ ValidationReport validate(const std::vector<Point3>& points, const std::vector<T
       p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
            std::ldexp(p.z, scaling.exponent)};
     }
-    check<predicates::AdaptiveKernel>(scaled, tets, threads, r);
+    check<predicates::AdaptiveKernel>(scaled, tets, threads, list_perturbed_violations, r);
   } else {
-    check<predicates::AdaptiveKernel>(points, tets, threads, r);
+    check<predicates::AdaptiveKernel>(points, tets, threads, list_perturbed_violations, r);
   }
   return r;
 }

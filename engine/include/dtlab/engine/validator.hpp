@@ -57,11 +57,11 @@ struct ValidationReport {
   // Per tetrahedron: 1 if it has a non-Delaunay face (for the .vtu "non_delaunay" array).
   std::vector<std::int32_t> non_delaunay_flags;
   // What the perturbed test rejects: interior faces that are non-Delaunay or tied against the
-  // perturbation, boundary edges that are reflex or flat against it. Counted, and their vertices
-  // listed (a face's two tetrahedra's eight, an edge's two boundary faces' four; unsorted, with
-  // repeats). On a mesh_consistent() mesh these are the faces that star splaying's exact scan
-  // finds, so burglary's post-check hands the list to the repair instead of a second scan
-  // (docs/design.md, "The post-check's findings").
+  // perturbation, boundary edges that are reflex or flat against it. Counted; their vertices
+  // listed only when validate() is asked to (a face's two tetrahedra's eight, an edge's two
+  // boundary faces' four; unsorted, with repeats). On a mesh_consistent() mesh these are the
+  // faces that star splaying's exact scan finds, so burglary's post-check hands the list to the
+  // repair instead of a second scan (docs/design.md, "The post-check's findings").
   std::uint64_t perturbed_violations = 0;
   std::vector<std::uint32_t> perturbed_violation_vertices;
 
@@ -89,7 +89,9 @@ const char* to_string(ValidateWith k);
 // `threads`: how many threads share the work (the report is the same for every count);
 // kAllThreads: one per hardware thread.
 inline constexpr int kAllThreads = 0;
+// `list_perturbed_violations`: fill ValidationReport::perturbed_violation_vertices.
 ValidationReport validate(const std::vector<Point3>& points, const std::vector<Tetrahedron>& tets,
-                          ValidateWith kernel = ValidateWith::Adaptive, int threads = 1);
+                          ValidateWith kernel = ValidateWith::Adaptive, int threads = 1,
+                          bool list_perturbed_violations = false);
 
 }  // namespace dtlab::engine
