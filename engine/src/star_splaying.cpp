@@ -101,11 +101,16 @@ void add_counts(SplayCounts& to, SplayCounts& from) {
 
 }  // namespace
 
-void StarSplayer::activate(VertexId x) {
-  if (active(x) || canonical_[x] != x) return;  // a duplicate is never a vertex of the result
+bool StarSplayer::claim_slot(VertexId x) {
+  if (active(x) || canonical_[x] != x) return false;  // a duplicate is never a vertex of the result
   slot_[x] = static_cast<int>(stars_.size());
   stars_.emplace_back();
   active_.push_back(x);
+  return true;
+}
+
+void StarSplayer::activate(VertexId x) {
+  if (!claim_slot(x)) return;
   build_star(x, star_of(x), build_);
   add_counts(counts_, build_.counts);
   enqueue(x);
@@ -114,12 +119,7 @@ void StarSplayer::activate(VertexId x) {
 void StarSplayer::activate_all(const std::vector<VertexId>& xs, int threads) {
   // Slots first, in order (stars_ does not grow while the threads write into it).
   const std::size_t first = stars_.size();
-  for (const VertexId x : xs) {
-    if (active(x) || canonical_[x] != x) continue;
-    slot_[x] = static_cast<int>(stars_.size());
-    stars_.emplace_back();
-    active_.push_back(x);
-  }
+  for (const VertexId x : xs) claim_slot(x);
   const std::size_t built = stars_.size() - first;
   const int parts = std::max(threads, 1);
   std::vector<BuildScratch> scratch(static_cast<std::size_t>(parts));

@@ -73,6 +73,9 @@ class StarSplayer {
     StarScratch star;
     SplayCounts counts;
   };
+  // Gives x a slot for its star (stars_ and active_ grow together), unless x is active or a
+  // duplicate: then false.
+  bool claim_slot(VertexId x);
   // x's star from the mesh's neighbours of x, into `star` (a fresh one).
   void build_star(VertexId x, VertexStar& star, BuildScratch& scratch) const;
 

@@ -181,8 +181,8 @@ struct SplayStats {
   double seconds_listing = 0.0;  // of which the store pass (the live tetrahedra in scan order)
   // Burglary's and the fast kernel's repair: of `seconds`, building the seeds' stars (on the
   // run's threads) and the consistency enforcement from them (one thread; a broken mesh's
-  // further rounds, `regrown`, not included). The rest is the scan, the grouping of equal points
-  // and the write-back.
+  // further rounds, `regrown`, not included). The rest is the store pass and scan, the grouping of
+  // equal points, the incidence lists (a broken mesh's) and the write-back with its walks.
   double seconds_building = 0.0;
   double seconds_enforcing = 0.0;
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
