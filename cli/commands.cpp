@@ -194,7 +194,7 @@ int run_triangulate(const TriangulateArgs& args) {
           static_cast<unsigned long long>(c.non_delaunay_faces),
           static_cast<unsigned long long>(c.reflex_boundary_edges),
           c.mesh_consistent ? "yes" : "no");
-      if (c.repaired) {
+      if (c.repaired && !engine::splays(args.options.repair)) {  // star splaying: its own line
         std::printf(
             "; repair (%s): %llu flips on the marks -> %llu, sweep %llu flips -> %llu, "
             "rebuilt: %s -> %llu",
@@ -205,7 +205,7 @@ int run_triangulate(const TriangulateArgs& args) {
             static_cast<unsigned long long>(c.non_delaunay_after));
       }
       std::printf("\n");
-      if (c.repaired && c.non_delaunay_after > 0 && args.options.repair != engine::Repair::Splay) {
+      if (c.repaired && c.non_delaunay_after > 0 && !engine::splays(args.options.repair)) {
         std::fprintf(stderr,
                      "dtlab: warning: the repair flips got stuck with %llu non-Delaunay faces "
                      "and reflex boundary edges left; --repair=rebuild triangulates again as a "
@@ -231,6 +231,13 @@ int run_triangulate(const TriangulateArgs& args) {
           static_cast<unsigned long long>(r.seeds), static_cast<unsigned long long>(r.stars),
           static_cast<unsigned long long>(r.tetrahedra_removed),
           static_cast<unsigned long long>(r.tetrahedra_created), r.seconds);
+      if (r.flipped) {
+        std::printf(
+            "  repair (flips before the stars): %llu exact flips in %.3f s left %llu non-Delaunay "
+            "faces, whose vertices were the seeds above\n",
+            static_cast<unsigned long long>(r.flips), r.seconds_flipping,
+            static_cast<unsigned long long>(r.faces_left));
+      }
     }
     if (s.hull_tetrahedra_lost >= 0) {
       std::printf("  aux-tet: %lld tetrahedra of the exact convex hull triangulation lost\n",

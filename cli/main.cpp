@@ -92,11 +92,13 @@ int main(int argc, char** argv) {
   tri->add_flag("--repair{splay}", repair,
                 "repair the mesh after the run by star splaying, exact, from every non-Delaunay "
                 "face (and burglary's marks): always ends in the Delaunay tetrahedralization, any "
-                "method and kernel. Burglary also has the paper's post-check: --repair=flips "
+                "method and kernel. --repair=flips-splay: on a mesh built exactly (burglary's), "
+                "exact Lawson flips from those faces first, star splaying from the faces they "
+                "leave. Burglary also has the paper's post-check: --repair=flips "
                 "(Lawson flips on the marks, then on every face; they can get stuck, and what "
                 "they leave is reported) and --repair=rebuild (the same, then a sequential "
                 "rebuild as an explicit, reported last resort)")
-      ->check(CLI::IsMember({"splay", "flips", "rebuild"}));
+      ->check(CLI::IsMember({"splay", "flips-splay", "flips", "rebuild"}));
   const std::map<std::string, dtlab::engine::Location> locations{
       {"dag", dtlab::engine::Location::Dag}, {"walk", dtlab::engine::Location::Walk}};
   tri->add_option("--location", targs.options.location,
@@ -213,10 +215,11 @@ int main(int argc, char** argv) {
     if (*info) return dtlab::cli::run_info(input, seed);
     if (*tri) {
       targs.options.progress = isatty(STDERR_FILENO) != 0;
-      targs.options.repair = repair == "splay"     ? dtlab::engine::Repair::Splay
-                             : repair == "flips"   ? dtlab::engine::Repair::Flips
-                             : repair == "rebuild" ? dtlab::engine::Repair::Rebuild
-                                                   : dtlab::engine::Repair::None;
+      targs.options.repair = repair == "splay"         ? dtlab::engine::Repair::Splay
+                             : repair == "flips-splay" ? dtlab::engine::Repair::FlipsThenSplay
+                             : repair == "flips"       ? dtlab::engine::Repair::Flips
+                             : repair == "rebuild"     ? dtlab::engine::Repair::Rebuild
+                                                       : dtlab::engine::Repair::None;
       return dtlab::cli::run_triangulate(targs);
     }
     if (*validate) {

@@ -65,9 +65,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   constexpr KernelKind kKernels[] = {KernelKind::Adaptive, KernelKind::Filtered, KernelKind::Fast};
   dtlab::engine::TriangulateOptions options;
   options.method = kMethods[method];
-  options.repair = method == 4 || (splay && method != 5) ? dtlab::engine::Repair::Splay
-                   : method == 5                         ? dtlab::engine::Repair::Rebuild
-                                                         : dtlab::engine::Repair::None;
+  // Burglary (4) repairs by star splaying, after exact flips where `splay` is set.
+  options.repair = method == 4 && splay                    ? dtlab::engine::Repair::FlipsThenSplay
+                   : method == 4 || (splay && method != 5) ? dtlab::engine::Repair::Splay
+                   : method == 5                           ? dtlab::engine::Repair::Rebuild
+                                                           : dtlab::engine::Repair::None;
   options.threads = 2 + static_cast<int>(threads);
   options.distribution = distribution != 0 ? dtlab::engine::Distribution::Dynamic
                                            : dtlab::engine::Distribution::Static;
@@ -92,12 +94,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto result = dtlab::engine::triangulate(points, options);
     if (dimension != 3) fail("triangulated an input without a tetrahedralization");
     const auto report = dtlab::engine::validate(points, result.tetrahedra);
-    if (options.kernel == KernelKind::Fast && options.repair != dtlab::engine::Repair::Splay) {
+    if (options.kernel == KernelKind::Fast && !dtlab::engine::splays(options.repair)) {
       // Only that the report could be computed: the fast kernel may be wrong.
       (void)report.valid();
       return 0;
     }
-    if (options.repair == dtlab::engine::Repair::Splay) {
+    if (dtlab::engine::splays(options.repair)) {
       if (!report.valid()) fail("invalid mesh after star splaying");
       return 0;
     }

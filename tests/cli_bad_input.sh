@@ -32,7 +32,7 @@ expect 2 "needs --location walk" -- triangulate "uniform:100" --insertion cavity
 expect 2 "insertion" -- triangulate "uniform:100" --location walk --insertion bowyer
 expect 2 "" -- triangulate "uniform:100" --predicates nosuch
 expect 2 "" -- predicates-audit "uniform:100" --predicates nosuch
-expect 2 "not in {splay,flips,rebuild}" -- triangulate "uniform:100" --method burglary --repair=bogus
+expect 2 "not in {splay,flips-splay,flips,rebuild}" -- triangulate "uniform:100" --method burglary --repair=bogus
 expect 2 "post-check" -- triangulate "uniform:100" --repair=flips
 expect 2 "" -- triangulate "uniform:100" --watchdog -1
 if ls "$dir"/out.* >/dev/null 2>&1; then echo "FAIL: an output file was left behind"; failures=$((failures + 1)); fi

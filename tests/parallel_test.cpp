@@ -81,26 +81,33 @@ TEST(ParallelMethods, ManyThreadsStayValidOnHardFamilies) {
 // Walk mode: every method walks lock-free over a mesh that other threads change (a walk that
 // ends in a dead tetrahedron descends its DAG children; one that fails falls back to the DAG),
 // and every method but burglary gives the unique tetrahedralization; burglary, repaired by star
-// splaying, gives it too.
+// splaying (alone, and after exact flips: slots reused, so the flips kill tetrahedra where the
+// walks around vertices start), gives it too.
 TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
   for (const std::string family : {"uniform", "grid", "sphere", "duplicates"}) {
     const auto points = generators::generate(family, 800, 8).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
                            Method::Batch, Method::Burglary}) {
+      const std::vector<engine::Repair> repairs =
+          m == Method::Burglary
+              ? std::vector<engine::Repair>{engine::Repair::Splay, engine::Repair::FlipsThenSplay}
+              : std::vector<engine::Repair>{engine::Repair::None};
       for (const int threads : {2, 4}) {
-        engine::TriangulateOptions options;
-        options.location = engine::Location::Walk;
-        options.method = m;
-        options.threads = threads;
-        options.stress = true;
-        options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
-        if (m == Method::Burglary) options.repair = engine::Repair::Splay;
-        const auto result = engine::triangulate(points, options);
-        const std::string what =
-            family + " " + engine::to_string(m) + " " + std::to_string(threads);
-        EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
-        EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+        for (const engine::Repair repair : repairs) {
+          engine::TriangulateOptions options;
+          options.location = engine::Location::Walk;
+          options.method = m;
+          options.threads = threads;
+          options.stress = true;
+          options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
+          options.repair = repair;
+          const auto result = engine::triangulate(points, options);
+          const std::string what = family + " " + engine::to_string(m) + " " +
+                                   std::to_string(threads) + " " + engine::to_string(repair);
+          EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
+          EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+        }
       }
     }
   }
@@ -294,6 +301,8 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   int stuck = 0;                   // grid runs whose flips got stuck
   int left_at_ties = 0;            // runs whose flips left a Delaunay mesh, not the unique one
   int proven = 0;                  // splay runs whose post-check proved the mesh unique already
+  std::uint64_t flips_first = 0;   // flips-splay: the flips before splaying
+  int splayed_after_flips = 0;     // flips-splay runs whose flips left faces to the stars
   auto run = [&](const std::string& family, const std::vector<Point3>& points,
                  const std::vector<engine::Tetrahedron>& expected, int threads,
                  engine::Repair repair, std::uint64_t seed) {
@@ -372,6 +381,30 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
           EXPECT_TRUE(result.stats.splay.found_by_post_check) << what;
         }
         break;
+      case engine::Repair::FlipsThenSplay: {
+        // Flips, then star splaying from what they leave: the unique mesh, without a rebuild.
+        const engine::SplayStats& splay = result.stats.splay;
+        EXPECT_TRUE(splay.done) << what;
+        EXPECT_FALSE(check.rebuilt) << what;
+        EXPECT_TRUE(report.is_perturbed_delaunay()) << what << report.json();
+        EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+        if (splay.proven_by_post_check) {
+          EXPECT_FALSE(splay.flipped) << what;
+          EXPECT_EQ(splay.stars, 0u) << what;
+          break;
+        }
+        // A consistent mesh built exactly: the flips ran, from the post-check's faces, and
+        // changed the mesh or left faces whose stars did.
+        EXPECT_TRUE(splay.found_by_post_check) << what;
+        EXPECT_TRUE(splay.flipped) << what;
+        EXPECT_GT(splay.flips + splay.faces_left, 0u) << what;
+        // Stars only where faces were left, and only from their vertices.
+        EXPECT_EQ(splay.stars > 0, splay.faces_left > 0) << what;
+        EXPECT_LE(splay.seeds, 8 * splay.faces_left) << what;
+        flips_first += splay.flips;
+        if (splay.faces_left > 0) ++splayed_after_flips;
+        break;
+      }
       case engine::Repair::Rebuild:
         EXPECT_TRUE(check.mesh_consistent_after_flips) << what;
         // The rebuild is taken exactly when the flips left faces.
@@ -387,8 +420,9 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
     const auto points = generators::generate(family, n, 5).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     for (const int threads : {2, 4}) {
-      for (const auto repair : {engine::Repair::None, engine::Repair::Flips,
-                                engine::Repair::Rebuild, engine::Repair::Splay}) {
+      for (const auto repair :
+           {engine::Repair::None, engine::Repair::Flips, engine::Repair::Rebuild,
+            engine::Repair::Splay, engine::Repair::FlipsThenSplay}) {
         run(family, points, expected, threads, repair, 1);
       }
     }
@@ -406,7 +440,13 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
   EXPECT_GT(burglaries, 0u);
   EXPECT_GT(damaged, 0u);
   EXPECT_GT(repair_flips, 0u);
+  // flips-splay: the flips did work. Whether they leave faces to the stars depends on the damage
+  // (0 to 2 of these runs in release builds);
+  // SplaySharedMesh.FlipsFirstHandTheFacesTheyLeaveToTheStars checks the hand-over on fixed damage.
+  EXPECT_GT(flips_first, 0u);
   std::printf("burglary, grid: %d runs whose flips got stuck\n", stuck);
+  std::printf("burglary, flips-splay: %llu flips, %d runs left faces to the stars\n",
+              static_cast<unsigned long long>(flips_first), splayed_after_flips);
   std::printf("burglary: %d runs whose flips stopped at ties\n", left_at_ties);
   std::printf("burglary: %d splay runs proven by the post-check\n", proven);
 }

@@ -274,14 +274,23 @@ TEST(SplayTetrahedra, EqualPointsAreOneVertex) {
   }
 }
 
-// The Delaunay mesh of `points` in the sequential engine (DAG mode, input order), and forced
-// flips that break it: the broken meshes the local repair starts from.
+// The Delaunay mesh of `points` in the sequential engine (DAG mode unless asked, input order),
+// and forced flips that break it: the broken meshes the local repair starts from. In walk mode
+// dead slots are reused, so a vertex's lowest live tetrahedron can be any of its own.
+engine::TriangulateOptions located(engine::Location location) {
+  engine::TriangulateOptions options;
+  options.location = location;
+  return options;
+}
+
 struct BrokenMesh {
   engine::TriangulateOptions options;
   engine::TriangulationStats stats;
   engine::IncrementalDelaunay<predicates::AdaptiveKernel> dt;
 
-  explicit BrokenMesh(const std::vector<Point3>& points) : dt(points, options, stats) {
+  explicit BrokenMesh(const std::vector<Point3>& points,
+                      engine::Location location = engine::Location::Dag)
+      : options(located(location)), dt(points, options, stats) {
     std::vector<std::uint32_t> order(points.size());
     std::iota(order.begin(), order.end(), 0U);
     const auto first = *engine::find_simplex(points, order).simplex;
@@ -380,6 +389,71 @@ TEST(SplaySharedMesh, ValidatedFindingsAreTheScansFindings) {
   }
   EXPECT_GT(rejected_ties, 0U);
   EXPECT_GT(rejected_boundary_edges, 0U);
+}
+
+// --repair=flips-splay: exact Lawson flips from the damaged faces first, star splaying from the
+// faces they leave. The flips are stopped after 0, 5 and any number of flips, so the stars start
+// from everything, from what a few flips left and from what all of them left: each time the
+// unique mesh. With no flip, the faces handed on are the scan's, each once, and the stars those of
+// splaying alone. Both locations: in walk mode the flips kill tetrahedra where the walks around
+// the seeds started (slots reused), so the walks must start from the flips' new ones.
+TEST(SplaySharedMesh, FlipsFirstHandTheFacesTheyLeaveToTheStars) {
+  constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
+  for (const auto location : {engine::Location::Dag, engine::Location::Walk}) {
+    for (const std::string family : {"uniform", "grid", "cospherical"}) {
+      const auto points = generators::generate(family, 3000, 4).points;
+      const auto limit = static_cast<VertexId>(points.size());
+      BrokenMesh clean(points, location);
+      const auto expected = engine::canonical_tetrahedra(clean.dt.finite_tetrahedra(limit));
+      engine::SplayStats alone;  // splaying alone, from the same damage
+      {
+        BrokenMesh broken(points, location);
+        ASSERT_EQ(broken.force_flips(60, 31), 60) << family;
+        engine::splay_shared_mesh(broken.dt.mesh(), {}, true, 2, alone);
+        ASSERT_EQ(engine::canonical_tetrahedra(broken.dt.finite_tetrahedra(limit)), expected);
+        EXPECT_FALSE(alone.flipped);
+      }
+      for (const std::uint64_t max_flips : {std::uint64_t{0}, std::uint64_t{5}, kAll}) {
+        const std::string what = family + (location == engine::Location::Walk ? " walk" : " dag") +
+                                 " max flips " + std::to_string(max_flips);
+        BrokenMesh broken(points, location);
+        ASSERT_EQ(broken.force_flips(60, 31), 60) << what;
+        engine::TriangulationStats flip_stats;
+        engine::NoSync no_sync;
+        const engine::FlipPass flips = [&](const std::vector<engine::TetId>& at,
+                                           std::vector<engine::TetId>& created,
+                                           std::vector<Quad>& left) {
+          engine::IncrementalDelaunay<predicates::AdaptiveKernel, engine::NoSync> flipper(
+              broken.dt.mesh(), broken.options, flip_stats, no_sync);
+          return flipper.flip_from(at, created, left, max_flips);
+        };
+        engine::SplayStats stats;
+        engine::splay_shared_mesh(broken.dt.mesh(), {}, true, 2, stats, nullptr, &flips);
+        EXPECT_TRUE(stats.flipped) << what;
+        EXPECT_EQ(stats.non_delaunay_faces, alone.non_delaunay_faces) << what;
+        EXPECT_TRUE(
+            engine::validate(points, broken.dt.finite_tetrahedra(limit)).is_perturbed_delaunay())
+            << what;
+        EXPECT_EQ(engine::canonical_tetrahedra(broken.dt.finite_tetrahedra(limit)), expected)
+            << what;
+        if (max_flips == 0) {
+          EXPECT_EQ(stats.flips, 0U) << what;
+          EXPECT_EQ(stats.faces_left, alone.non_delaunay_faces) << what;
+          EXPECT_EQ(stats.seeds, alone.seeds) << what;
+          EXPECT_EQ(stats.stars, alone.stars) << what;
+        } else if (max_flips == 5) {
+          EXPECT_EQ(stats.flips, 5U) << what;
+          EXPECT_GT(stats.faces_left, 0U) << what;
+          EXPECT_GT(stats.stars, 0U) << what;
+        } else {
+          // The forced flips are undone by flips where they can be: fewer faces left to the stars.
+          EXPECT_GT(stats.flips, 0U) << what;
+          EXPECT_LT(stats.faces_left, alone.non_delaunay_faces) << what;
+          EXPECT_LT(stats.stars, alone.stars) << what;
+        }
+      }
+    }
+  }
 }
 
 // The findings renamed to the mesh's vertices: the output names each set of equal points by its

@@ -27,6 +27,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -513,6 +514,67 @@ class IncrementalDelaunay {
         if (child != kNoTet) pending.push_back(child);
       }
     }
+    return lawson(faces, nullptr, nullptr);
+  }
+
+  // --repair=flips-splay's first stage (splay_repair.hpp, FlipPass): Lawson flips from every face
+  // of the live tetrahedra among `tets`, at most `max_flips` of them (the faces still queued then
+  // are handed on as they are). Returns the flips; `created` gets every tetrahedron they made (some
+  // dead again by the end), `left` the vertices of the two tetrahedra of each face still
+  // non-Delaunay at the end (once a face), where no flip applied: star splaying's seeds. Each
+  // face is tested on its last pair of tetrahedra, since the faces of every new tetrahedron are
+  // queued after its creation, so no face is non-Delaunay at the end but those in `left` and
+  // those that already were, outside `tets` (docs/design.md, "Flips, then star splaying").
+  std::uint64_t flip_from(const std::vector<TetId>& tets, std::vector<TetId>& created,
+                          std::vector<Quad>& left,
+                          std::uint64_t max_flips = std::numeric_limits<std::uint64_t>::max()) {
+    std::vector<std::pair<TetId, int>> faces;
+    for (const TetId t : tets) {
+      if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;
+      for (int f = 0; f < 4; ++f) faces.emplace_back(t, f);
+    }
+    std::vector<std::pair<TetId, int>> stuck;
+    const std::uint64_t flips = lawson(faces, &stuck, &created, max_flips);
+    // Each face once: named from the side of its finite apex, the lower tetrahedron where both
+    // apexes are finite.
+    std::vector<std::pair<TetId, int>> named;
+    for (auto [t, f] : stuck) {
+      if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;  // flipped away later
+      const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(f)];
+      const TetId u = ref_tet(across);
+      const int g = ref_face(across);
+      const bool mine_infinite =
+          mesh_.tets[t].vertex[static_cast<std::size_t>(f)] == kInfiniteVertex;
+      const bool its_infinite =
+          mesh_.tets[u].vertex[static_cast<std::size_t>(g)] == kInfiniteVertex;
+      if (mine_infinite != its_infinite ? mine_infinite : u < t) {
+        t = u;
+        f = g;
+      }
+      named.emplace_back(t, f);
+    }
+    std::sort(named.begin(), named.end());
+    named.erase(std::unique(named.begin(), named.end()), named.end());
+    for (const auto& [t, f] : named) {
+      const Tet& tet = mesh_.tets[t];
+      const Tet& across = mesh_.tets[ref_tet(tet.neighbor[static_cast<std::size_t>(f)])];
+      const VertexId apex = tet.vertex[static_cast<std::size_t>(f)];
+      // A face between two infinite apexes (never on a mesh built exactly) is handed on as found.
+      if (apex != kInfiniteVertex && !geometry_.in_conflict(across, apex)) continue;
+      left.push_back(tet.vertex);
+      left.push_back(across.vertex);
+    }
+    return flips;
+  }
+
+ private:
+  // Lawson flips from `faces` (tetrahedron, face) until none is left; the faces of every new
+  // tetrahedron follow. A face is tested from the side of its finite apex. `stuck`, when given,
+  // receives the faces found non-Delaunay where no flip exists (and those still queued if the
+  // bound stops the pass); `created` every new tetrahedron. Returns the number of flips.
+  std::uint64_t lawson(std::vector<std::pair<TetId, int>>& faces,
+                       std::vector<std::pair<TetId, int>>* stuck, std::vector<TetId>* created,
+                       std::uint64_t max_flips = std::numeric_limits<std::uint64_t>::max()) {
     std::uint64_t flips = 0;
     // Lawson flips raise no face of the lifted triangulation, so they cannot cycle; the bound
     // only guards against an inexact kernel, whose flips can. It counts the live tetrahedra, not
@@ -523,34 +585,48 @@ class IncrementalDelaunay {
     for (TetId t = 0; t < mesh_.tets.size(); ++t) {
       live += mesh_.tets.is_alive(t, std::memory_order_acquire) ? 1 : 0;
     }
-    const std::uint64_t bound = 64 * live + 1024;
-    while (!faces.empty() && flips < bound) {
+    const std::uint64_t bound = std::min(64 * live + 1024, max_flips);
+    while (!faces.empty()) {
+      if (flips >= bound) {  // what is left is star splaying's, where it runs
+        if (stuck != nullptr) stuck->insert(stuck->end(), faces.begin(), faces.end());
+        faces.clear();
+        break;
+      }
       auto [t, f] = faces.back();
       faces.pop_back();
-      const Tet& tet = mesh_.tets[t];
       if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;
-      if (tet.vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
+      if (mesh_.tets[t].vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
         // Test the face from the finite side (a face has at most one infinite apex).
-        const FaceRef across = tet.neighbor[static_cast<std::size_t>(f)];
+        const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(f)];
         t = ref_tet(across);
         f = ref_face(across);
         // Two infinite tetrahedra glued on one face: a mesh the fast kernel broke (seen after
         // its burglary runs). No flip applies; the face stays for the validator to count.
-        if (mesh_.tets[t].vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) continue;
+        if (mesh_.tets[t].vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
+          if (stuck != nullptr) stuck->emplace_back(t, f);
+          continue;
+        }
       }
+      const Tet& tet = mesh_.tets[t];
+      const Tet& other = mesh_.tets[ref_tet(tet.neighbor[static_cast<std::size_t>(f)])];
+      if (!geometry_.in_conflict(other, tet.vertex[static_cast<std::size_t>(f)])) continue;
       std::uint64_t count = 0;
       stack_.clear();
-      if (legalize_face(t, f, count) != Flip::Done) continue;
+      if (legalize_face(t, f, count, /*force=*/true) != Flip::Done) {
+        if (stuck != nullptr) stuck->emplace_back(t, f);
+        stack_.clear();
+        continue;
+      }
       ++flips;
-      for (const TetId created : stack_) {
-        for (int g = 0; g < 4; ++g) faces.emplace_back(created, g);
+      for (const TetId id : stack_) {
+        for (int g = 0; g < 4; ++g) faces.emplace_back(id, g);
+        if (created != nullptr) created->push_back(id);
       }
       stack_.clear();
     }
     return flips;
   }
 
- private:
   // S23: abcp + abcy -> three tetrahedra around the new edge py.
   Flip flip23(TetId t, TetId t2, int ip, VertexId y) {
     std::array<int, 3> positions{};

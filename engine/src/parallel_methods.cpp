@@ -219,7 +219,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
   check.repaired = true;
   const auto t0 = Clock::now();
   const double check_before = check.seconds_check;
-  if (options.repair == Repair::Splay) {
+  if (splays(options.repair)) {
     // The validation above already proved the mesh the unique perturbed Delaunay
     // tetrahedralization (ValidationReport::is_perturbed_delaunay): what star splaying would
     // return unchanged, so its own scan is skipped (the marks, if any, changed nothing that
@@ -241,11 +241,24 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
     if (hull_counts && exact_mesh && report.mesh_consistent()) {
       found = validated_findings(report, input_count, duplicates);
     }
+    // --repair=flips-splay: exact Lawson flips first, by this kernel (exact: only a mesh built
+    // exactly is flipped).
+    TriangulationStats flip_stats;
+    NoSync flip_sync;
+    const FlipPass flips = [&](const std::vector<TetId>& at, std::vector<TetId>& created,
+                               std::vector<Quad>& left) {
+      IncrementalDelaunay<K, NoSync> flipper(mesh, options, flip_stats, flip_sync);
+      return flipper.flip_from(at, created, left);
+    };
+    const bool flips_first = options.repair == Repair::FlipsThenSplay && exact_mesh;
     splay_shared_mesh(mesh, marks, exact_mesh, options.threads, stats.splay,
-                      found ? &*found : nullptr);
+                      found ? &*found : nullptr, flips_first ? &flips : nullptr);
     check.seconds_repair = stats.splay.seconds;
     // Nothing written back: the mesh and so its verdict are the ones validated above.
-    if (stats.splay.tetrahedra_removed == 0 && stats.splay.tetrahedra_created == 0) return tets;
+    if (stats.splay.flips == 0 && stats.splay.tetrahedra_removed == 0 &&
+        stats.splay.tetrahedra_created == 0) {
+      return tets;
+    }
     tets = mesh.finite_tetrahedra(static_cast<VertexId>(input_count), duplicates, options.threads);
     count(tets);
     return tets;
@@ -653,7 +666,7 @@ std::vector<Tetrahedron> run_parallel(const std::vector<Point3>& points, std::si
     return post_check<K>(mesh, input_count, marks, full_order, first, skip_first, all_duplicates,
                          options, stats);
   }
-  if (options.repair == Repair::Splay)
+  if (splays(options.repair))
     splay_shared_mesh(mesh, {}, options.kernel != KernelKind::Fast, options.threads, stats.splay);
   const auto output_start = Clock::now();
   std::vector<Tetrahedron> result =

@@ -418,7 +418,8 @@ ValidatedFindings validated_findings(const ValidationReport& report, std::size_t
 }
 
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
-                       int threads, SplayStats& stats, const ValidatedFindings* validated) {
+                       int threads, SplayStats& stats, const ValidatedFindings* validated,
+                       const FlipPass* flips_first) {
   const auto t0 = Clock::now();
   if (validated != nullptr && !exact_mesh) {
     throw std::logic_error("star splaying: validated findings on a mesh not built exactly");
@@ -616,6 +617,44 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   for (VertexId v = 0; v < points.size(); ++v) {
     if (seed[v] != 0 && canonical[v] == v) seeds.push_back(v);
   }
+  // Flips first (--repair=flips-splay), on a consistent mesh where every point is one vertex: the
+  // tetrahedra at the seeds hold every non-Delaunay face, and what the flips leave of those is
+  // what the stars must repair. The flips keep the mesh consistent, so the walks still serve, from
+  // a live tetrahedron at each vertex: where a vertex's died, one of the flips' new ones at it is
+  // alive (a flip keeps its vertices).
+  if (flips_first != nullptr && walked != nullptr && stats.missing_vertices == 0 &&
+      !seeds.empty()) {
+    const auto flipping = Clock::now();
+    std::vector<TetId> at_seeds;
+    std::vector<TetId> around_seed;
+    for (const VertexId v : seeds) {
+      walked->tetrahedron_ids_of(v, around_seed);
+      at_seeds.insert(at_seeds.end(), around_seed.begin(), around_seed.end());
+    }
+    std::sort(at_seeds.begin(), at_seeds.end());
+    at_seeds.erase(std::unique(at_seeds.begin(), at_seeds.end()), at_seeds.end());
+    std::vector<TetId> made;
+    std::vector<Quad> left;
+    stats.flipped = true;
+    stats.flips = (*flips_first)(at_seeds, made, left);
+    for (const TetId t : made) {
+      if (!mesh.tets.is_alive(t, std::memory_order_relaxed)) continue;
+      for (const VertexId v : mesh.tets[t].vertex) {
+        if (v != kInfiniteVertex &&
+            !mesh.tets.is_alive(listed.lowest_tetrahedron[v], std::memory_order_relaxed)) {
+          listed.lowest_tetrahedron[v] = t;
+        }
+      }
+    }
+    stats.faces_left = left.size() / 2;
+    std::fill(seed.begin(), seed.end(), 0);
+    for (const Quad& q : left) seed_quad(q);
+    seeds.clear();
+    for (VertexId v = 0; v < points.size(); ++v) {
+      if (seed[v] != 0) seeds.push_back(v);
+    }
+    stats.seconds_flipping = std::chrono::duration<double>(Clock::now() - flipping).count();
+  }
   stats.seeds = seeds.size();
   if (seeds.empty()) {
     stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -690,7 +729,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
         if (touched) dying.push_back(i);
       }
     }
-    std::vector<char> is_dying(slots, 0);
+    std::vector<char> is_dying(mesh.tets.size(), 0);  // the flips may have added slots
     for (const TetId t : dying) is_dying[t] = 1;
     faces.clear();
     for (const TetId t : dying) {

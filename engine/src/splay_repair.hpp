@@ -2,9 +2,11 @@
 // Star splaying applied: to the engine's shared mesh after a run (burglary's marks, the fast
 // kernel's errors), and to any tetrahedron list (dtlab repair). Exact predicates throughout.
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
+#include "conflict.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "shared_mesh.hpp"
@@ -28,6 +30,13 @@ struct ValidatedFindings {
 ValidatedFindings validated_findings(const ValidationReport& report, std::size_t input_count,
                                      const std::vector<std::pair<VertexId, VertexId>>& duplicates);
 
+// --repair=flips-splay's first stage, the engine's (IncrementalDelaunay::flip_from): exact Lawson
+// flips from every face of the live tetrahedra `tets`. Returns the flips; `created` gets the
+// tetrahedra they made, `left` the vertices of both tetrahedra of each face still non-Delaunay
+// after them (no flip removes it).
+using FlipPass = std::function<std::uint64_t(const std::vector<TetId>& tets,
+                                             std::vector<TetId>& created, std::vector<Quad>& left)>;
+
 // Repairs the live tetrahedra of `mesh` (infinite ones included) into the Delaunay
 // tetrahedralization of its points, locally: stars are splayed from the vertices of `marks` (those
 // still live), of every non-Delaunay face and of every flat or
@@ -40,9 +49,12 @@ ValidatedFindings validated_findings(const ValidationReport& report, std::size_t
 // (`exact_mesh`, checked), with the vertex at infinity (no auxiliary vertices, which the
 // validation of finite tetrahedra does not see) and judged mesh_consistent() by that validation
 // (the one-sided tests and the walks around vertices rely on it): the caller's to ensure.
+// `flips_first`: where the mesh is consistent (built exactly, no flat or inverted tetrahedron,
+// every point one vertex), the faces of the tetrahedra at the seeds are handed to it first, and
+// only the faces it leaves seed the stars (docs/design.md, "Flips, then star splaying").
 void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool exact_mesh,
-                       int threads, SplayStats& stats,
-                       const ValidatedFindings* validated = nullptr);
+                       int threads, SplayStats& stats, const ValidatedFindings* validated = nullptr,
+                       const FlipPass* flips_first = nullptr);
 
 // The Delaunay tetrahedralization of `points` from any list of tetrahedra on them (ids checked by
 // the caller): every distinct point gets a star, from its neighbours in `tets` (near points for a

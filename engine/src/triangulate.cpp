@@ -91,7 +91,7 @@ std::vector<Tetrahedron> run_sequential(const std::vector<Point3>& points, std::
   stats.predicate_calls = dt.predicate_calls();
   stats.location_steps = dt.location_steps();
   stats.walk_fallbacks = dt.walk_fallbacks();
-  if (options.repair == Repair::Splay)
+  if (splays(options.repair))
     splay_shared_mesh(dt.mesh(), {}, options.kernel != KernelKind::Fast, 1, stats.splay);
   const auto output_start = Clock::now();
   std::vector<Tetrahedron> result = dt.take_finite_tetrahedra(static_cast<VertexId>(input_count));
@@ -293,6 +293,8 @@ const char* to_string(Repair r) {
       return "rebuild";
     case Repair::Splay:
       return "splay";
+    case Repair::FlipsThenSplay:
+      return "flips-splay";
   }
   return "?";
 }
@@ -601,6 +603,10 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"seconds_listing", r.seconds_listing},
                   {"seconds_building", r.seconds_building},
                   {"seconds_enforcing", r.seconds_enforcing},
+                  {"flipped", r.flipped},
+                  {"flips", r.flips},
+                  {"faces_left", r.faces_left},
+                  {"seconds_flipping", r.seconds_flipping},
                   {"scan_threads", r.scan_threads}};
   }
   j["repair"] = to_string(options.repair);

@@ -77,6 +77,11 @@ class WalkedMeshStars : public MeshStars {
     out.clear();
     const TetId start = some_tetrahedron_[x];
     if (start == kNoTet) return;
+    // A dead start would walk the references the tetrahedron had when it died.
+    if (!mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
+      throw std::logic_error("star splaying: the walk around vertex " + std::to_string(x) +
+                             " starts at a dead tetrahedron");
+    }
     TetIdSet& visited = scratch().visited;
     std::vector<TetId>& to_visit = scratch().to_visit;
     visited.clear();

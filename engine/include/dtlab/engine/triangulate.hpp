@@ -33,7 +33,9 @@ enum class Insertion { Flips, Cavity };
 // on the marked tetrahedra, then on every tetrahedron when faces are left (Flips), which can get
 // stuck in 3D; or the same, then a sequential rebuild as an explicit last resort (Rebuild;
 // reported as `rebuilt`, a baseline, not a repair).
-enum class Repair { None, Flips, Rebuild, Splay };
+// Splay: star splaying from every damaged face. FlipsThenSplay: exact Lawson flips from them first
+// where the mesh was built exactly, then star splaying from the faces the flips leave.
+enum class Repair { None, Flips, Rebuild, Splay, FlipsThenSplay };
 
 const char* to_string(KernelKind k);
 const char* to_string(Bounding b);
@@ -42,6 +44,10 @@ const char* to_string(Insertion i);
 const char* to_string(Method m);
 const char* to_string(Distribution d);
 const char* to_string(Repair r);
+// Whether the repair ends in star splaying (Splay, FlipsThenSplay).
+inline bool splays(Repair r) {
+  return r == Repair::Splay || r == Repair::FlipsThenSplay;
+}
 
 struct TriangulateOptions {
   KernelKind kernel = KernelKind::Adaptive;
@@ -185,6 +191,13 @@ struct SplayStats {
   // equal points, the incidence lists (a broken mesh's) and the write-back with its walks.
   double seconds_building = 0.0;
   double seconds_enforcing = 0.0;
+  // --repair=flips-splay on a mesh built exactly: the exact Lawson flips before splaying (their
+  // time part of `seconds`, after the scan), and the non-Delaunay faces they left (the seeds'
+  // faces then). `flipped`: the pass ran.
+  bool flipped = false;
+  std::uint64_t flips = 0;
+  std::uint64_t faces_left = 0;
+  double seconds_flipping = 0.0;
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };
 
