@@ -12,7 +12,8 @@
 #             exact validation twice (not timed in the run; about 20 s each at 1M points here).
 # DTLAB_BIN names the build directory (default build/release); DTLAB_METHODS the lock methods
 # (default all five; burglary's runs include its post-check, untimed but long at 1M points);
-# DTLAB_REPAIR_SEEDS the repair runs' seeds (default "1 2 3").
+# DTLAB_REPAIR_SEEDS the repair runs' seeds (default "1 2 3"); DTLAB_REPAIR_MODES their --repair
+# modes (default "splay"; "splay flips-splay" runs both, alternating per seed).
 set -euo pipefail
 out=${1:?usage: tools/scaling_runs.sh OUTDIR [INPUT] [THREADS] [INSERTION] [PARTS]}
 input=${2:-uniform:1000000}
@@ -48,9 +49,10 @@ repair_insertions=$insertion
 for ins in $repair_insertions; do
 for t in "${thread_counts[@]}"; do
   for seed in ${DTLAB_REPAIR_SEEDS:-1 2 3}; do
+  for mode in ${DTLAB_REPAIR_MODES:-splay}; do
     stats=$(mktemp)
     "$bin/cli/dtlab" triangulate "$input" --location walk --insertion "$ins" --method burglary \
-      --threads "$t" --repair --seed "$seed" --stats "$stats" >/dev/null
+      --threads "$t" --repair="$mode" --seed "$seed" --stats "$stats" >/dev/null
     python3 - "$stats" "$t" "$seed" "$ins" >>"$repairs" <<'EOF'
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -58,6 +60,7 @@ splay = s.get("splay", {})
 check = s.get("post_check", {})
 print(json.dumps({
     "insertion": sys.argv[4], "threads": int(sys.argv[2]), "seed": int(sys.argv[3]),
+    "repair": s.get("repair"),
     "seconds_total": s["seconds"]["total"],
     "seconds_repair": check.get("seconds_repair"),
     "seconds_scan": splay.get("seconds_scan"),
@@ -65,6 +68,10 @@ print(json.dumps({
     # True where those faces are the post-check's (no scan of the repair's own).
     "found_by_post_check": splay.get("found_by_post_check"),
     "stars": splay.get("stars"),
+    # --repair=flips-splay: the exact flips first, and the faces they left to the stars.
+    "flips": splay.get("flips"),
+    "faces_left": splay.get("faces_left"),
+    "seconds_flipping": splay.get("seconds_flipping"),
     # True where the post-check's validation already proved the mesh the unique one: no scan.
     "proven_by_post_check": splay.get("proven_by_post_check"),
     "seconds_check": check.get("seconds_check"),
@@ -74,6 +81,7 @@ print(json.dumps({
 }))
 EOF
     rm -f "$stats"
+  done
   done
 done
 done

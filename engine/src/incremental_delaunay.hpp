@@ -514,7 +514,16 @@ class IncrementalDelaunay {
         if (child != kNoTet) pending.push_back(child);
       }
     }
-    return lawson(faces, nullptr, nullptr);
+    // Lawson flips raise no face of the lifted triangulation, so they cannot cycle; the bound
+    // only guards against an inexact kernel, whose flips can. It counts the live tetrahedra, not
+    // the slots: in DAG mode every flip adds slots, and a bound on slots let a sweep after a
+    // cycling first pass run to tens of millions of flips (the parallel fuzzer: 60 points, the
+    // fast kernel, over 3 GB of pending faces).
+    std::uint64_t live = 0;
+    for (TetId t = 0; t < mesh_.tets.size(); ++t) {
+      live += mesh_.tets.is_alive(t, std::memory_order_acquire) ? 1 : 0;
+    }
+    return lawson(faces, 64 * live + 1024, nullptr, nullptr);
   }
 
   // --repair=flips-splay's first stage (splay_repair.hpp, FlipPass): Lawson flips from every face
@@ -534,7 +543,11 @@ class IncrementalDelaunay {
       for (int f = 0; f < 4; ++f) faces.emplace_back(t, f);
     }
     std::vector<std::pair<TetId, int>> stuck;
-    const std::uint64_t flips = lawson(faces, &stuck, &created, max_flips);
+    // A bound from the faces given, not the whole mesh (counting its live tetrahedra took 10 to
+    // 20 ms at 1M points, more than the flips for a few dozen faces): a pass stopped by it hands
+    // the rest to the stars, which finish it whatever is left.
+    const std::uint64_t bound = std::min<std::uint64_t>(64 * faces.size() + 1024, max_flips);
+    const std::uint64_t flips = lawson(faces, bound, &stuck, &created);
     // Each face once: named from the side of its finite apex, the lower tetrahedron where both
     // apexes are finite.
     std::vector<std::pair<TetId, int>> named;
@@ -568,24 +581,14 @@ class IncrementalDelaunay {
   }
 
  private:
-  // Lawson flips from `faces` (tetrahedron, face) until none is left; the faces of every new
-  // tetrahedron follow. A face is tested from the side of its finite apex. `stuck`, when given,
-  // receives the faces found non-Delaunay where no flip exists (and those still queued if the
-  // bound stops the pass); `created` every new tetrahedron. Returns the number of flips.
-  std::uint64_t lawson(std::vector<std::pair<TetId, int>>& faces,
-                       std::vector<std::pair<TetId, int>>* stuck, std::vector<TetId>* created,
-                       std::uint64_t max_flips = std::numeric_limits<std::uint64_t>::max()) {
+  // Lawson flips from `faces` (tetrahedron, face) until none is left or `bound` flips were made;
+  // the faces of every new tetrahedron follow. A face is tested from the side of its finite apex.
+  // `stuck`, when given, receives the faces found non-Delaunay where no flip exists (and those
+  // still queued if the bound stops the pass); `created` every new tetrahedron. Returns the number
+  // of flips.
+  std::uint64_t lawson(std::vector<std::pair<TetId, int>>& faces, std::uint64_t bound,
+                       std::vector<std::pair<TetId, int>>* stuck, std::vector<TetId>* created) {
     std::uint64_t flips = 0;
-    // Lawson flips raise no face of the lifted triangulation, so they cannot cycle; the bound
-    // only guards against an inexact kernel, whose flips can. It counts the live tetrahedra, not
-    // the slots: in DAG mode every flip adds slots, and a bound on slots let a sweep after a
-    // cycling first pass run to tens of millions of flips (the parallel fuzzer: 60 points, the
-    // fast kernel, over 3 GB of pending faces).
-    std::uint64_t live = 0;
-    for (TetId t = 0; t < mesh_.tets.size(); ++t) {
-      live += mesh_.tets.is_alive(t, std::memory_order_acquire) ? 1 : 0;
-    }
-    const std::uint64_t bound = std::min(64 * live + 1024, max_flips);
     while (!faces.empty()) {
       if (flips >= bound) {  // what is left is star splaying's, where it runs
         if (stuck != nullptr) stuck->insert(stuck->end(), faces.begin(), faces.end());
