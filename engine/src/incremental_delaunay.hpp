@@ -530,7 +530,8 @@ class IncrementalDelaunay {
   // of the live tetrahedra among `tets`, at most `max_flips` of them (the faces still queued then
   // are handed on as they are). Returns the flips; `created` gets every tetrahedron they made (some
   // dead again by the end), `left` the vertices of the two tetrahedra of each face still
-  // non-Delaunay at the end (once a face), where no flip applied: star splaying's seeds. Each
+  // non-Delaunay at the end (once a face), where no flip applied or the bound stopped the pass
+  // before its turn: star splaying's seeds. Each
   // face is tested on its last pair of tetrahedra, since the faces of every new tetrahedron are
   // queued after its creation, so no face is non-Delaunay at the end but those in `left` and
   // those that already were, outside `tets` (docs/design.md, "Flips, then star splaying").

@@ -254,7 +254,7 @@ std::vector<Tetrahedron> post_check(SharedMesh& mesh, std::size_t input_count,
     splay_shared_mesh(mesh, marks, exact_mesh, options.threads, stats.splay,
                       found ? &*found : nullptr, flips_first ? &flips : nullptr);
     check.seconds_repair = stats.splay.seconds;
-    // Nothing written back: the mesh and so its verdict are the ones validated above.
+    // Nothing flipped or written back: the mesh and so its verdict are the ones validated above.
     if (stats.splay.flips == 0 && stats.splay.tetrahedra_removed == 0 &&
         stats.splay.tetrahedra_created == 0) {
       return tets;

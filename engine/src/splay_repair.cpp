@@ -617,11 +617,12 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
   for (VertexId v = 0; v < points.size(); ++v) {
     if (seed[v] != 0 && canonical[v] == v) seeds.push_back(v);
   }
-  // Flips first (--repair=flips-splay), on a consistent mesh where every point is one vertex: the
-  // tetrahedra at the seeds hold every non-Delaunay face, and what the flips leave of those is
-  // what the stars must repair. The flips keep the mesh consistent, so the walks still serve, from
-  // a live tetrahedron at each vertex: where a vertex's died, one of the flips' new ones at it is
-  // alive (a flip keeps its vertices).
+  // Flips first (--repair=flips-splay), on a consistent mesh where every distinct point is a
+  // vertex: the tetrahedra at the seeds hold every non-Delaunay face, and what the flips leave of
+  // those is what the stars must repair. The flips keep the mesh consistent, so the walks still
+  // serve, from a live tetrahedron at each vertex: where a vertex's died, one of the flips' new
+  // ones at it is alive (a flip keeps its vertices). So `lowest_tetrahedron` is from here on a
+  // walk's start, not always the lowest.
   if (flips_first != nullptr && walked != nullptr && stats.missing_vertices == 0 &&
       !seeds.empty()) {
     const auto flipping = Clock::now();
@@ -640,9 +641,12 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     for (const TetId t : made) {
       if (!mesh.tets.is_alive(t, std::memory_order_relaxed)) continue;
       for (const VertexId v : mesh.tets[t].vertex) {
-        if (v != kInfiniteVertex &&
-            !mesh.tets.is_alive(listed.lowest_tetrahedron[v], std::memory_order_relaxed)) {
+        if (v == kInfiniteVertex) continue;
+        const TetId start = listed.lowest_tetrahedron[v];
+        if (!mesh.tets.is_alive(start, std::memory_order_relaxed) ||
+            mesh.tets[start].index_of(v) < 0) {
           listed.lowest_tetrahedron[v] = t;
+          ++stats.walk_starts_moved;
         }
       }
     }

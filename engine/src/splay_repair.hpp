@@ -33,7 +33,7 @@ ValidatedFindings validated_findings(const ValidationReport& report, std::size_t
 // --repair=flips-splay's first stage, the engine's (IncrementalDelaunay::flip_from): exact Lawson
 // flips from every face of the live tetrahedra `tets`. Returns the flips; `created` gets the
 // tetrahedra they made, `left` the vertices of both tetrahedra of each face still non-Delaunay
-// after them (no flip removes it).
+// after them (where no flip applied, or still queued when the pass's bound stopped it).
 using FlipPass = std::function<std::uint64_t(const std::vector<TetId>& tets,
                                              std::vector<TetId>& created, std::vector<Quad>& left)>;
 

@@ -606,6 +606,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
                   {"flipped", r.flipped},
                   {"flips", r.flips},
                   {"faces_left", r.faces_left},
+                  {"walk_starts_moved", r.walk_starts_moved},
                   {"seconds_flipping", r.seconds_flipping},
                   {"scan_threads", r.scan_threads}};
   }

@@ -77,10 +77,12 @@ class WalkedMeshStars : public MeshStars {
     out.clear();
     const TetId start = some_tetrahedron_[x];
     if (start == kNoTet) return;
-    // A dead start would walk the references the tetrahedron had when it died.
-    if (!mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
+    // A dead start would walk the references the tetrahedron had when it died (a reused slot,
+    // from one without x).
+    if (!mesh_.tets.is_alive(start, std::memory_order_relaxed) ||
+        mesh_.tets[start].index_of(x) < 0) {
       throw std::logic_error("star splaying: the walk around vertex " + std::to_string(x) +
-                             " starts at a dead tetrahedron");
+                             " starts at a tetrahedron that is dead or lacks it");
     }
     TetIdSet& visited = scratch().visited;
     std::vector<TetId>& to_visit = scratch().to_visit;

@@ -33,8 +33,9 @@ enum class Insertion { Flips, Cavity };
 // on the marked tetrahedra, then on every tetrahedron when faces are left (Flips), which can get
 // stuck in 3D; or the same, then a sequential rebuild as an explicit last resort (Rebuild;
 // reported as `rebuilt`, a baseline, not a repair).
-// Splay: star splaying from every damaged face. FlipsThenSplay: exact Lawson flips from them first
-// where the mesh was built exactly, then star splaying from the faces the flips leave.
+// Splay: star splaying from every damaged face. FlipsThenSplay: burglary's post-check on a mesh
+// built exactly and consistent, exact Lawson flips from those faces first, then star splaying from
+// the faces the flips leave; elsewhere the same as Splay.
 enum class Repair { None, Flips, Rebuild, Splay, FlipsThenSplay };
 
 const char* to_string(KernelKind k);
@@ -193,10 +194,12 @@ struct SplayStats {
   double seconds_enforcing = 0.0;
   // --repair=flips-splay on a mesh built exactly: the exact Lawson flips before splaying (their
   // time part of `seconds`, after the scan), and the non-Delaunay faces they left (the seeds'
-  // faces then). `flipped`: the pass ran.
+  // faces then). `flipped`: the pass ran. `walk_starts_moved`: vertices whose walk start the
+  // flips killed, given one of the flips' new tetrahedra.
   bool flipped = false;
   std::uint64_t flips = 0;
   std::uint64_t faces_left = 0;
+  std::uint64_t walk_starts_moved = 0;
   double seconds_flipping = 0.0;
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };
