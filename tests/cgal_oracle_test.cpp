@@ -132,9 +132,9 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedraByCavities) {
 }
 
 // Star splaying (issue 12) against CGAL after each of its three uses, on every family with a
-// tetrahedralization: burglary then --repair (2 and 4 threads, random delays while locks are
-// held), the fast kernel then --repair, and dtlab repair (engine::repair) from the fast kernel's
-// mesh and from nothing.
+// tetrahedralization: burglary then --repair and --repair=flips-splay (2 and 4 threads, random
+// delays while locks are held), the fast kernel then --repair, and dtlab repair (engine::repair)
+// from the fast kernel's mesh and from nothing.
 TEST(CgalOracle, EveryFamilyRepairedIdenticalTetrahedra) {
   int compared = 0;
   for (const std::string& family : generators::families()) {
@@ -142,13 +142,15 @@ TEST(CgalOracle, EveryFamilyRepairedIdenticalTetrahedra) {
     if (cgal_dimension(pts) < 3) continue;
     const auto cgal = cgal_delaunay(pts);
     for (const int threads : {2, 4}) {
-      engine::TriangulateOptions burglary;
-      burglary.method = engine::Method::Burglary;
-      burglary.threads = threads;
-      burglary.stress = true;
-      burglary.repair = engine::Repair::Splay;
-      EXPECT_TRUE(same_tetrahedra(engine::triangulate(pts, burglary).tetrahedra, cgal))
-          << family << " burglary " << threads << " + repair";
+      for (const auto repair : {engine::Repair::Splay, engine::Repair::FlipsThenSplay}) {
+        engine::TriangulateOptions burglary;
+        burglary.method = engine::Method::Burglary;
+        burglary.threads = threads;
+        burglary.stress = true;
+        burglary.repair = repair;
+        EXPECT_TRUE(same_tetrahedra(engine::triangulate(pts, burglary).tetrahedra, cgal))
+            << family << " burglary " << threads << " + repair " << engine::to_string(repair);
+      }
     }
     engine::TriangulateOptions fast;
     fast.kernel = engine::KernelKind::Fast;
