@@ -292,6 +292,9 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
   j["points"] = points.size();
   j["tetrahedra_in"] = tets.size();
   j["tetrahedra_out"] = repaired.size();
+  j["local"] = stats.local;
+  j["non_delaunay_faces"] = stats.non_delaunay_faces;
+  j["seconds_checking"] = stats.seconds_checking;
   j["missing_vertices"] = stats.missing_vertices;
   j["stars"] = stats.stars;
   j["offers"] = stats.offers;
@@ -314,6 +317,12 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
         tets.size(), points.size(), repaired.size(), static_cast<unsigned long long>(stats.stars),
         static_cast<unsigned long long>(stats.missing_vertices),
         static_cast<unsigned long long>(stats.bridges), stats.seconds);
+    if (stats.local) {
+      std::printf(
+          "  locally: the input was a consistent tetrahedralization (checked in %.3f s); stars "
+          "only around its %llu non-Delaunay faces\n",
+          stats.seconds_checking, static_cast<unsigned long long>(stats.non_delaunay_faces));
+    }
     if (report) {
       std::printf("  validation (adaptive predicates): %s\n",
                   report->valid() ? "VALID" : "INVALID");

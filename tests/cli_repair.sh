@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# dtlab repair: the fast kernel's mesh of a sphere (broken) and a Delaunay mesh with one
-# tetrahedron dropped (a hole) become the Delaunay mesh, equal to the exact triangulation, the same
-# on 1 and on 3 threads; burglary's --repair=flips-splay gives the exact mesh; a mesh that names a vertex the points do not have, or an unreadable
-# file, is an error (exit 2).
+# dtlab repair: the fast kernel's mesh of a sphere (consistent but not Delaunay: repaired locally,
+# from its non-Delaunay faces), the same mesh with a tetrahedron listed twice (not a
+# tetrahedralization: every vertex splayed) and a Delaunay mesh with one tetrahedron dropped (a
+# hole) become the Delaunay mesh, equal to the exact triangulation, the same on 1 and on 3
+# threads; burglary's --repair=flips-splay gives the exact mesh; a mesh that names a vertex the
+# points do not have, or an unreadable file, is an error (exit 2).
 set -euo pipefail
 dtlab="$1"
 dir=$(mktemp -d)
@@ -20,18 +22,33 @@ if "$dtlab" validate "$dir/fast.node" "$dir/fast.ele" >/dev/null 2>&1; then
 fi
 "$dtlab" repair "$dir/fast.node" "$dir/fast.ele" -o "$dir/repaired.ele" --validate \
   --stats "$dir/stats.json" >/dev/null
-python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["validation_valid"] and d["stars"] == 3000, d' "$dir/stats.json"
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["validation_valid"] and d["local"] and 0 < d["stars"] < 3000 and d["non_delaunay_faces"] > 0, d' "$dir/stats.json"
 diff <(sorted "$dir/exact.ele") <(sorted "$dir/repaired.ele") >/dev/null
-# The stars built on 1 and on 3 threads: the same mesh, line for line, and the same counts.
-for t in 1 3; do
-  "$dtlab" repair "$dir/fast.node" "$dir/fast.ele" --threads "$t" -o "$dir/t$t.ele" \
-    --stats "$dir/t$t.json" >/dev/null
-done
-cmp "$dir/t1.ele" "$dir/t3.ele"
-python3 -c 'import json,sys
+# The first tetrahedron twice: a face in four tetrahedra, so every vertex gets a star.
+python3 -c 'import sys
+lines = [l for l in open(sys.argv[1]) if not l.startswith("#")]
+n = int(lines[0].split()[0])
+first = lines[1].split()
+open(sys.argv[2], "w").write("%d 4 0\n" % (n + 1) + "".join(lines[1:n + 1]) +
+                             "%d %s\n" % (n + int(first[0]), " ".join(first[1:5])))' \
+  "$dir/fast.ele" "$dir/doubled.ele"
+"$dtlab" repair "$dir/fast.node" "$dir/doubled.ele" -o "$dir/undoubled.ele" --validate \
+  --stats "$dir/doubled.json" >/dev/null
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["validation_valid"] and not d["local"] and d["stars"] == 3000, d' "$dir/doubled.json"
+diff <(sorted "$dir/exact.ele") <(sorted "$dir/undoubled.ele") >/dev/null
+# The stars built on 1 and on 3 threads, locally and everywhere: the same mesh, line for line, and
+# the same counts.
+for input in fast doubled; do
+  for t in 1 3; do
+    "$dtlab" repair "$dir/fast.node" "$dir/$input.ele" --threads "$t" -o "$dir/t$t.ele" \
+      --stats "$dir/t$t.json" >/dev/null
+  done
+  cmp "$dir/t1.ele" "$dir/t3.ele"
+  python3 -c 'import json,sys
 a, b = (json.load(open(f)) for f in sys.argv[1:3])
-assert all(a[k] == b[k] for k in ("stars", "offers", "changes", "bridges")), (a, b)' \
-  "$dir/t1.json" "$dir/t3.json"
+assert all(a[k] == b[k] for k in ("local", "stars", "offers", "changes", "bridges")), (a, b)' \
+    "$dir/t1.json" "$dir/t3.json"
+done
 # Burglary's repair with exact flips first: the exact mesh, the flips' line printed, the counts in
 # the stats (oversubscribed threads with delays: burglary's damage is likely, not certain).
 "$dtlab" triangulate sphere:3000 --method burglary --threads 4 --stress --repair=flips-splay \

@@ -256,6 +256,32 @@ TEST(StarPieces, ClosestPairsAcrossAreTheBruteForceOnes) {
   }
 }
 
+// Two tetrahedra that meet at one vertex only, all seven points used: the validator calls the
+// list mesh_consistent() (closed boundary, Euler characteristic 1, no overlap), but the star of
+// the shared vertex falls apart into two fans that no walk joins, so the repair may not start
+// from walks there: every vertex is splayed, and the result is the Delaunay mesh.
+TEST(SplayTetrahedra, ListsPinchedAtAVertexAreSplayedEverywhere) {
+  const std::vector<Point3> points = {{0.01, 0.02, 0.03}, {1.0, 0.1, 0.2},   {1.1, 1.0, 0.05},
+                                      {0.9, 0.15, 1.1},   {-1.0, 0.12, 0.3}, {-1.2, 1.1, 0.07},
+                                      {-0.95, 0.2, 1.05}};
+  auto positive = [&](engine::Tetrahedron t) {
+    if (predicates::AdaptiveKernel::orient3d(points[t[0]], points[t[1]], points[t[2]],
+                                             points[t[3]]) < 0) {
+      std::swap(t[0], t[1]);
+    }
+    return t;
+  };
+  const std::vector<engine::Tetrahedron> pinched = {positive({0, 1, 2, 3}), positive({0, 4, 5, 6})};
+  const engine::ValidationReport report = engine::validate(points, pinched);
+  ASSERT_TRUE(report.mesh_consistent()) << report.json();  // what makes this case a trap
+  engine::SplayStats stats;
+  const auto repaired = engine::repair(points, pinched, stats);
+  EXPECT_FALSE(stats.local);
+  EXPECT_EQ(stats.stars, points.size());
+  EXPECT_EQ(engine::canonical_tetrahedra(repaired),
+            engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra));
+}
+
 // Equal points are one vertex of the repair: copies of generated points, and a point written with
 // zeros of either sign (-0.0 == +0.0, though their bits differ).
 TEST(SplayTetrahedra, EqualPointsAreOneVertex) {
@@ -312,6 +338,33 @@ struct BrokenMesh {
     return made;
   }
 };
+
+// A list that is a consistent tetrahedralization (the engine's Delaunay mesh, and the same broken
+// by forced flips) is repaired locally: from its non-Delaunay faces only, as burglary's mesh is,
+// with few stars; the result is the Delaunay mesh, as splaying every vertex gives.
+TEST(SplayTetrahedra, ConsistentListsAreRepairedLocally) {
+  for (const std::string family : {"uniform", "grid", "cospherical"}) {
+    const auto points = generators::generate(family, 3000, 6).points;
+    const auto limit = static_cast<VertexId>(points.size());
+    BrokenMesh broken(points);
+    const auto delaunay = broken.dt.finite_tetrahedra(limit);
+    const auto expected = engine::canonical_tetrahedra(delaunay);
+    engine::SplayStats clean;
+    EXPECT_EQ(engine::canonical_tetrahedra(engine::repair(points, delaunay, clean)), expected)
+        << family;
+    EXPECT_TRUE(clean.local) << family;
+    EXPECT_EQ(clean.stars, 0U) << family;
+    ASSERT_EQ(broken.force_flips(40, 9), 40) << family;
+    const auto damaged = broken.dt.finite_tetrahedra(limit);
+    engine::SplayStats local;
+    EXPECT_EQ(engine::canonical_tetrahedra(engine::repair(points, damaged, local, 2)), expected)
+        << family;
+    EXPECT_TRUE(local.local) << family;
+    EXPECT_GT(local.non_delaunay_faces, 0U) << family;
+    EXPECT_GT(local.stars, 0U) << family;
+    EXPECT_LT(local.stars, points.size() / 4) << family;
+  }
+}
 
 // The scan and the stars' building on several threads find what they find on one: the same
 // broken mesh (same forced flips), repaired with 1 and with 3 threads, gives the same counts,

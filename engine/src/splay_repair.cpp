@@ -873,6 +873,139 @@ std::vector<Tetrahedron> splay_tetrahedra(const std::vector<Point3>& points,
   return out;
 }
 
+namespace {
+
+// A tetrahedron list as a SharedMesh closed by the vertex at infinity, as the engine builds one:
+// a slot per tetrahedron, neighbours matched by face keys, and an infinite tetrahedron on every
+// boundary face (its face listed with the finite tetrahedron's vertex on the negative side, then
+// the vertex at infinity), those matched with each other across the boundary edges. False where
+// a face or a boundary edge is not on exactly two (the store is then unusable).
+bool close_into_mesh(const std::vector<Tetrahedron>& tets, SharedMesh& mesh) {
+  mesh.tets.keep_children(false);
+  mesh.tets.keep_lock_words(false);
+  std::vector<FaceEntry> faces;
+  faces.reserve(4 * tets.size());
+  for (const Tetrahedron& q : tets) {
+    const TetId t = mesh.tets.allocate();
+    mesh.tets[t].vertex = q;
+    mesh.tets.set_alive(t, true);
+    for (std::size_t f = 0; f < 4; ++f) {
+      faces.push_back({face_key(q, f), face_ref(t, static_cast<int>(f)), false});
+    }
+  }
+  auto by_key = [](const FaceEntry& a, const FaceEntry& b) { return a.key < b.key; };
+  std::sort(faces.begin(), faces.end(), by_key);
+  // Pairs are linked; a face met once is on the boundary and gets its infinite tetrahedron.
+  std::vector<FaceEntry> hull_edges;
+  auto link = [&](FaceRef a, FaceRef b) {
+    mesh.tets[ref_tet(a)].neighbor[static_cast<std::size_t>(ref_face(a))] = b;
+    mesh.tets[ref_tet(b)].neighbor[static_cast<std::size_t>(ref_face(b))] = a;
+  };
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    if (j - i > 2) return false;
+    if (j - i == 2) {
+      link(faces[i].ref, faces[i + 1].ref);
+    } else {
+      const Tet& finite = mesh.tets[ref_tet(faces[i].ref)];
+      const auto& fv = kFaceVertex[static_cast<std::size_t>(ref_face(faces[i].ref))];
+      const Quad q{finite.vertex[static_cast<std::size_t>(fv[0])],
+                   finite.vertex[static_cast<std::size_t>(fv[1])],
+                   finite.vertex[static_cast<std::size_t>(fv[2])], kInfiniteVertex};
+      const TetId u = mesh.tets.allocate();
+      mesh.tets[u].vertex = q;
+      mesh.tets.set_alive(u, true);
+      link(faces[i].ref, face_ref(u, 3));
+      for (std::size_t f = 0; f < 3; ++f) {
+        hull_edges.push_back({face_key(q, f), face_ref(u, static_cast<int>(f)), false});
+      }
+    }
+    i = j;
+  }
+  std::sort(hull_edges.begin(), hull_edges.end(), by_key);
+  for (std::size_t i = 0; i < hull_edges.size(); i += 2) {
+    if (i + 1 >= hull_edges.size() || hull_edges[i].key != hull_edges[i + 1].key ||
+        (i + 2 < hull_edges.size() && hull_edges[i + 2].key == hull_edges[i].key)) {
+      return false;
+    }
+    link(hull_edges[i].ref, hull_edges[i + 1].ref);
+  }
+  return true;
+}
+
+// Whether the tetrahedra at every vertex are connected through the faces that contain it: the
+// walks of WalkedMeshStars then find them all. The validator's mesh_consistent() does not say so
+// for any list: two fans that meet at one vertex only, their boundaries closed, pass it.
+bool every_star_connected(const SharedMesh& mesh, std::size_t point_count,
+                          std::vector<TetId>& some_tetrahedron, int threads) {
+  std::vector<std::uint32_t> incident(point_count, 0);
+  some_tetrahedron.assign(point_count, kNoTet);
+  for (TetId t = 0; t < mesh.tets.size(); ++t) {
+    for (const VertexId v : mesh.tets[t].vertex) {
+      if (v == kInfiniteVertex) continue;
+      ++incident[v];
+      if (some_tetrahedron[v] == kNoTet) some_tetrahedron[v] = t;
+    }
+  }
+  const WalkedMeshStars walks(mesh, some_tetrahedron);
+  std::atomic<bool> connected{true};
+  in_parallel_ranges(point_count, std::max(threads, 1),
+                     [&](std::size_t begin, std::size_t end, std::size_t /*part*/) {
+                       std::vector<TetId> around;
+                       for (std::size_t v = begin; v < end && connected.load(); ++v) {
+                         if (incident[v] == 0) continue;
+                         walks.tetrahedron_ids_of(static_cast<VertexId>(v), around);
+                         if (around.size() != incident[v]) connected.store(false);
+                       }
+                     });
+  return connected.load();
+}
+
+// dtlab repair of a list that is already a consistent tetrahedralization (the validator's
+// mesh_consistent(): oriented, manifold, closed, every point a vertex, no overlap, its probes all
+// tested; and every vertex's star connected), of distinct points: closed by the vertex at
+// infinity into a mesh, splayed from the faces the validation rejected only, as burglary's
+// post-check does (docs/design.md, "dtlab repair, locally"). Empty where the list is not such a
+// tetrahedralization: the caller splays every vertex then.
+std::optional<std::vector<Tetrahedron>> repair_locally(const std::vector<Point3>& points,
+                                                       const std::vector<Tetrahedron>& tets,
+                                                       SplayStats& stats, int threads) {
+  const auto t0 = Clock::now();
+  const std::vector<VertexId> canonical =
+      canonical_points(points, [](VertexId /*v*/) { return false; });
+  for (VertexId v = 0; v < points.size(); ++v) {
+    if (canonical[v] != v) return std::nullopt;  // equal points: named as the global path names
+  }
+  const ValidationReport report = validate(points, tets, ValidateWith::Adaptive, threads, true);
+  if (!report.mesh_consistent() || !report.probe_check_complete) return std::nullopt;
+  SharedMesh mesh(points);
+  std::vector<TetId> some_tetrahedron;
+  if (!close_into_mesh(tets, mesh) ||
+      !every_star_connected(mesh, points.size(), some_tetrahedron, threads)) {
+    return std::nullopt;
+  }
+  const double seconds_checking = std::chrono::duration<double>(Clock::now() - t0).count();
+  const ValidatedFindings found = validated_findings(report, points.size(), {});
+  splay_shared_mesh(mesh, {}, true, threads, stats, &found);
+  stats.local = true;
+  stats.seconds_checking = seconds_checking;
+  std::vector<Tetrahedron> out =
+      mesh.finite_tetrahedra(static_cast<VertexId>(points.size()), {}, threads);
+  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return out;
+}
+
+// The local repair where the list allows it, else every vertex splayed.
+std::vector<Tetrahedron> repair_list(const std::vector<Point3>& points,
+                                     const std::vector<Tetrahedron>& tets, SplayStats& stats,
+                                     int threads) {
+  if (auto local = repair_locally(points, tets, stats, threads)) return *std::move(local);
+  return splay_tetrahedra(points, tets, stats, threads);
+}
+
+}  // namespace
+
 std::vector<Tetrahedron> repair(const std::vector<Point3>& points,
                                 const std::vector<Tetrahedron>& tets, SplayStats& stats,
                                 int threads) {
@@ -899,13 +1032,13 @@ std::vector<Tetrahedron> repair(const std::vector<Point3>& points,
   }
   // The engine's lossless power-of-two scaling keeps the exact stages off their GMP fallback.
   const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
-  if (!scaling.lossless) return splay_tetrahedra(points, tets, stats, threads);
+  if (!scaling.lossless) return repair_list(points, tets, stats, threads);
   std::vector<Point3> scaled = points;
   for (Point3& p : scaled) {
     p = {std::ldexp(p.x, scaling.exponent), std::ldexp(p.y, scaling.exponent),
          std::ldexp(p.z, scaling.exponent)};
   }
-  return splay_tetrahedra(scaled, tets, stats, threads);
+  return repair_list(scaled, tets, stats, threads);
 }
 
 }  // namespace dtlab::engine

@@ -200,6 +200,12 @@ struct SplayStats {
   std::uint64_t flips = 0;
   std::uint64_t faces_left = 0;
   std::uint64_t walk_starts_moved = 0;
+  // dtlab repair: the list was a consistent tetrahedralization (the validator's mesh_consistent(),
+  // every star connected, distinct points), closed into a mesh and splayed from the validation's
+  // findings only (`seconds_checking`: that validation and the closing, part of `seconds`);
+  // false: every vertex splayed.
+  bool local = false;
+  double seconds_checking = 0.0;
   double seconds_flipping = 0.0;
   std::uint64_t scan_threads = 0;  // threads of the store pass and the scan (the run's)
 };
