@@ -23,7 +23,7 @@ void in_parallel_ranges(std::size_t n, int parts, Work work,
                         std::size_t minimum = kParallelMinimum) {
   const auto count =
       std::min(static_cast<std::size_t>(std::max(parts, 1)), std::max<std::size_t>(n, 1));
-  if (count == 1 || n < minimum) {
+  if (count <= 1 || n < minimum) {  // count is at least 1; "<=" tells the analyzer so
     work(std::size_t{0}, n, std::size_t{0});
     return;
   }
