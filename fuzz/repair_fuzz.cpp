@@ -3,7 +3,9 @@
 // taken modulo the point count, repeated and inverted ones included) -> dtlab repair by star
 // splaying. It must end, and equal the engine's exact tetrahedralization (the unique perturbed
 // Delaunay one) when CGAL finds one; when CGAL does not, it must refuse with a
-// TriangulationError.
+// TriangulationError. Then the same for that tetrahedralization with one tetrahedron dropped (the
+// last byte picks it): a notch at the hull leaves a consistent list, which the repair takes the
+// local path for (docs/design.md, "dtlab repair, locally"), a hole inside does not.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -47,8 +49,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto repaired = dtlab::engine::repair(points, tets, stats);
     if (dimension != 3) fail("repaired a point set without a tetrahedralization");
-    if (canonical(repaired) != canonical(dtlab::engine::triangulate(points, {}).tetrahedra)) {
+    const auto delaunay = dtlab::engine::triangulate(points, {}).tetrahedra;
+    if (canonical(repaired) != canonical(delaunay)) {
       fail("the repaired mesh is not the Delaunay tetrahedralization");
+    }
+    auto dropped = delaunay;
+    dropped.erase(dropped.begin() + static_cast<std::ptrdiff_t>(data[size - 1] % dropped.size()));
+    dtlab::engine::SplayStats again;
+    if (canonical(dtlab::engine::repair(points, dropped, again)) != canonical(delaunay)) {
+      fail("the Delaunay mesh less one tetrahedron was not repaired into it");
     }
   } catch (const dtlab::engine::TriangulationError& e) {
     if (dimension == 3) fail(e.what());
