@@ -319,8 +319,8 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
         static_cast<unsigned long long>(stats.bridges), stats.seconds);
     if (stats.local) {
       std::printf(
-          "  locally: the input was a consistent tetrahedralization (checked in %.3f s); stars "
-          "only around its %llu non-Delaunay faces\n",
+          "  locally: the input was a tetrahedralization of the hull (checked in %.3f s); stars "
+          "only around the %llu faces and edges the perturbed Delaunay test rejects\n",
           stats.seconds_checking, static_cast<unsigned long long>(stats.non_delaunay_faces));
     }
     if (report) {

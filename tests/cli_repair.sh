@@ -22,9 +22,18 @@ if "$dtlab" validate "$dir/fast.node" "$dir/fast.ele" >/dev/null 2>&1; then
 fi
 "$dtlab" repair "$dir/fast.node" "$dir/fast.ele" -o "$dir/repaired.ele" --validate \
   --stats "$dir/stats.json" >/dev/null
-python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["validation_valid"] and d["local"] and 0 < d["stars"] < 3000 and d["non_delaunay_faces"] > 0, d' "$dir/stats.json"
+# Locally exactly where the validator calls the input a consistent tetrahedralization (it did here,
+# with GCC 12 on x86-64: the fast kernel's rounding decides it), with stars only around its faces.
+"$dtlab" validate "$dir/fast.node" "$dir/fast.ele" >"$dir/fast_report.json" || true
+python3 -c 'import json,sys
+d = json.load(open(sys.argv[1]))
+consistent = json.load(open(sys.argv[2]))["consistent"]
+assert d["validation_valid"] and d["local"] == consistent, (d, consistent)
+assert not consistent or (0 < d["stars"] < 3000 and d["non_delaunay_faces"] > 0), d' \
+  "$dir/stats.json" "$dir/fast_report.json"
 diff <(sorted "$dir/exact.ele") <(sorted "$dir/repaired.ele") >/dev/null
-# The first tetrahedron twice: a face in four tetrahedra, so every vertex gets a star.
+# The first tetrahedron twice: its faces in three tetrahedra or twice on one side, no
+# tetrahedralization, so every vertex gets a star.
 python3 -c 'import sys
 lines = [l for l in open(sys.argv[1]) if not l.startswith("#")]
 n = int(lines[0].split()[0])

@@ -259,7 +259,10 @@ TEST(StarPieces, ClosestPairsAcrossAreTheBruteForceOnes) {
 // Two tetrahedra that meet at one vertex only, all seven points used: the validator calls the
 // list mesh_consistent() (closed boundary, Euler characteristic 1, no overlap), but the star of
 // the shared vertex falls apart into two fans that no walk joins, so the repair may not start
-// from walks there: every vertex is splayed, and the result is the Delaunay mesh.
+// from walks there. Its boundary is two spheres, it does not cover the hull, and the walk around
+// the shared vertex finds half its tetrahedra: each of the local path's checks refuses it, so
+// every vertex is splayed, and the result is the Delaunay mesh. (When only the walks' count was
+// checked after mesh_consistent(), skipping that check made this case return a wrong mesh.)
 TEST(SplayTetrahedra, ListsPinchedAtAVertexAreSplayedEverywhere) {
   const std::vector<Point3> points = {{0.01, 0.02, 0.03}, {1.0, 0.1, 0.2},   {1.1, 1.0, 0.05},
                                       {0.9, 0.15, 1.1},   {-1.0, 0.12, 0.3}, {-1.2, 1.1, 0.07},
@@ -327,15 +330,28 @@ struct BrokenMesh {
     }
   }
   // Flips `wanted` random faces (seeded), whatever the Delaunay test says; returns how many.
-  int force_flips(int wanted, std::uint64_t seed) {
+  // `interior`: only faces of tetrahedra whose neighbours and their neighbours are all finite, so
+  // that every flip (S23, S32, S44) replaces finite tetrahedra by finite ones and the boundary
+  // stays the hull's.
+  int force_flips(int wanted, std::uint64_t seed, bool interior = false) {
     std::mt19937_64 rng(seed);
     int made = 0;
     for (int attempt = 0; made < wanted && attempt < 100000; ++attempt) {
       const auto t = static_cast<engine::TetId>(rng() % dt.mesh().tets.size());
-      if (!dt.mesh().tets.is_alive(t)) continue;
-      made += dt.flip_face(t, static_cast<int>(rng() % 4)).empty() ? 0 : 1;
+      const int f = static_cast<int>(rng() % 4);
+      if (!dt.mesh().tets.is_alive(t) || (interior && !finite_around(t, 2))) continue;
+      made += dt.flip_face(t, f).empty() ? 0 : 1;
     }
     return made;
+  }
+  // Whether t and the tetrahedra up to `rings` faces away from it are finite.
+  bool finite_around(engine::TetId t, int rings) {
+    const engine::Tet& tet = dt.mesh().tets[t];
+    if (tet.is_infinite()) return false;
+    if (rings == 0) return true;
+    return std::all_of(tet.neighbor.begin(), tet.neighbor.end(), [&](engine::FaceRef n) {
+      return finite_around(engine::ref_tet(n), rings - 1);
+    });
   }
 };
 
@@ -354,8 +370,9 @@ TEST(SplayTetrahedra, ConsistentListsAreRepairedLocally) {
         << family;
     EXPECT_TRUE(clean.local) << family;
     EXPECT_EQ(clean.stars, 0U) << family;
-    ASSERT_EQ(broken.force_flips(40, 9), 40) << family;
+    ASSERT_EQ(broken.force_flips(40, 9, true), 40) << family;
     const auto damaged = broken.dt.finite_tetrahedra(limit);
+    ASSERT_TRUE(engine::validate(points, damaged).consistent()) << family;  // the hull kept
     engine::SplayStats local;
     EXPECT_EQ(engine::canonical_tetrahedra(engine::repair(points, damaged, local, 2)), expected)
         << family;

@@ -879,7 +879,9 @@ namespace {
 // a slot per tetrahedron, neighbours matched by face keys, and an infinite tetrahedron on every
 // boundary face (its face listed with the finite tetrahedron's vertex on the negative side, then
 // the vertex at infinity), those matched with each other across the boundary edges. False where
-// a face or a boundary edge is not on exactly two (the store is then unusable).
+// a face or a boundary edge is not on exactly two, or where the boundary is not one sphere (one
+// component, V - E + F = 2: a ball beside a solid torus passes the validator's Euler
+// characteristic, 1 + 0, but no walk or star would ever join the two); the store is then unusable.
 bool close_into_mesh(const std::vector<Tetrahedron>& tets, SharedMesh& mesh) {
   mesh.tets.keep_children(false);
   mesh.tets.keep_lock_words(false);
@@ -924,14 +926,40 @@ bool close_into_mesh(const std::vector<Tetrahedron>& tets, SharedMesh& mesh) {
     i = j;
   }
   std::sort(hull_edges.begin(), hull_edges.end(), by_key);
+  const std::size_t boundary_faces = hull_edges.size() / 3;
+  if (boundary_faces == 0) return false;
+  // The boundary's pieces: its faces (the infinite tetrahedra, slots after the finite ones) joined
+  // across the edges they share.
+  const auto first_infinite = static_cast<TetId>(tets.size());
+  std::vector<TetId> piece(boundary_faces);
+  std::iota(piece.begin(), piece.end(), TetId{0});
+  auto find = [&](TetId x) {
+    while (piece[x] != x) x = piece[x] = piece[piece[x]];
+    return x;
+  };
   for (std::size_t i = 0; i < hull_edges.size(); i += 2) {
     if (i + 1 >= hull_edges.size() || hull_edges[i].key != hull_edges[i + 1].key ||
         (i + 2 < hull_edges.size() && hull_edges[i + 2].key == hull_edges[i].key)) {
       return false;
     }
     link(hull_edges[i].ref, hull_edges[i + 1].ref);
+    const TetId a = find(ref_tet(hull_edges[i].ref) - first_infinite);
+    const TetId b = find(ref_tet(hull_edges[i + 1].ref) - first_infinite);
+    piece[std::max(a, b)] = std::min(a, b);
   }
-  return true;
+  for (TetId f = 0; f < boundary_faces; ++f) {
+    if (find(f) != 0) return false;
+  }
+  std::vector<VertexId> on_boundary;
+  for (TetId f = 0; f < boundary_faces; ++f) {
+    const Tet& u = mesh.tets[first_infinite + f];
+    on_boundary.insert(on_boundary.end(), u.vertex.begin(), u.vertex.begin() + 3);
+  }
+  std::sort(on_boundary.begin(), on_boundary.end());
+  const auto boundary_vertices = static_cast<std::size_t>(
+      std::unique(on_boundary.begin(), on_boundary.end()) - on_boundary.begin());
+  const std::size_t boundary_edges = hull_edges.size() / 2;
+  return boundary_vertices + boundary_faces == boundary_edges + 2;
 }
 
 // Whether the tetrahedra at every vertex are connected through the faces that contain it: the
@@ -962,46 +990,55 @@ bool every_star_connected(const SharedMesh& mesh, std::size_t point_count,
   return connected.load();
 }
 
-// dtlab repair of a list that is already a consistent tetrahedralization (the validator's
-// mesh_consistent(): oriented, manifold, closed, every point a vertex, no overlap, its probes all
-// tested; and every vertex's star connected), of distinct points: closed by the vertex at
-// infinity into a mesh, splayed from the faces the validation rejected only, as burglary's
-// post-check does (docs/design.md, "dtlab repair, locally"). Empty where the list is not such a
-// tetrahedralization: the caller splays every vertex then.
+// dtlab repair of a list that is already a tetrahedralization of the hull of distinct points,
+// Delaunay or not: closed by the vertex at infinity into a mesh whose boundary is one sphere and
+// whose vertex stars are connected (the cheap checks first), then judged consistent() by the
+// exact validator (oriented, manifold, every point a vertex, Euler characteristic 1, a convex
+// boundary and the hull's exact volume: one cover of the hull, proven, not sampled). Such a list
+// is the mesh burglary's post-check hands over, and is splayed the same way, from the faces the
+// validation rejected only (docs/design.md, "dtlab repair, locally"). Empty for any other list
+// (the caller splays every vertex); `seconds_checking` is then what the checks took.
 std::optional<std::vector<Tetrahedron>> repair_locally(const std::vector<Point3>& points,
                                                        const std::vector<Tetrahedron>& tets,
                                                        SplayStats& stats, int threads) {
   const auto t0 = Clock::now();
+  auto give_up = [&]() -> std::optional<std::vector<Tetrahedron>> {
+    stats.seconds_checking = std::chrono::duration<double>(Clock::now() - t0).count();
+    return std::nullopt;
+  };
   const std::vector<VertexId> canonical =
       canonical_points(points, [](VertexId /*v*/) { return false; });
   for (VertexId v = 0; v < points.size(); ++v) {
-    if (canonical[v] != v) return std::nullopt;  // equal points: named as the global path names
+    if (canonical[v] != v) return give_up();  // equal points: named as the global path names
   }
-  const ValidationReport report = validate(points, tets, ValidateWith::Adaptive, threads, true);
-  if (!report.mesh_consistent() || !report.probe_check_complete) return std::nullopt;
   SharedMesh mesh(points);
   std::vector<TetId> some_tetrahedron;
   if (!close_into_mesh(tets, mesh) ||
       !every_star_connected(mesh, points.size(), some_tetrahedron, threads)) {
-    return std::nullopt;
+    return give_up();
   }
-  const double seconds_checking = std::chrono::duration<double>(Clock::now() - t0).count();
+  const ValidationReport report = validate(points, tets, ValidateWith::Adaptive, threads, true);
+  if (!report.consistent()) return give_up();
+  stats.seconds_checking = std::chrono::duration<double>(Clock::now() - t0).count();
   const ValidatedFindings found = validated_findings(report, points.size(), {});
   splay_shared_mesh(mesh, {}, true, threads, stats, &found);
   stats.local = true;
-  stats.seconds_checking = seconds_checking;
   std::vector<Tetrahedron> out =
       mesh.finite_tetrahedra(static_cast<VertexId>(points.size()), {}, threads);
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return out;
 }
 
-// The local repair where the list allows it, else every vertex splayed.
+// The local repair where the list allows it, else every vertex splayed (`seconds` then includes
+// the checks that sent it there).
 std::vector<Tetrahedron> repair_list(const std::vector<Point3>& points,
                                      const std::vector<Tetrahedron>& tets, SplayStats& stats,
                                      int threads) {
   if (auto local = repair_locally(points, tets, stats, threads)) return *std::move(local);
-  return splay_tetrahedra(points, tets, stats, threads);
+  const double checking = stats.seconds_checking;
+  std::vector<Tetrahedron> out = splay_tetrahedra(points, tets, stats, threads);
+  stats.seconds += checking;
+  return out;
 }
 
 }  // namespace

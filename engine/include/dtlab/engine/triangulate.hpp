@@ -200,10 +200,10 @@ struct SplayStats {
   std::uint64_t flips = 0;
   std::uint64_t faces_left = 0;
   std::uint64_t walk_starts_moved = 0;
-  // dtlab repair: the list was a consistent tetrahedralization (the validator's mesh_consistent(),
-  // every star connected, distinct points), closed into a mesh and splayed from the validation's
-  // findings only (`seconds_checking`: that validation and the closing, part of `seconds`);
-  // false: every vertex splayed.
+  // dtlab repair: the list was a tetrahedralization of the hull (distinct points, the boundary one
+  // sphere, every star connected, the validator's consistent()), closed into a mesh and splayed
+  // from the validation's findings only; false: every vertex splayed. `seconds_checking`: the
+  // checks that decided (part of `seconds` either way).
   bool local = false;
   double seconds_checking = 0.0;
   double seconds_flipping = 0.0;
