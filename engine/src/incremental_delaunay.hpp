@@ -469,13 +469,7 @@ class IncrementalDelaunay {
   // into a Delaunay mesh with it and check that relegalize() removes them. Sequential use only.
   // Returns the new tetrahedra (empty when no flip exists there).
   std::vector<TetId> flip_face(TetId t, int f) {
-    const Tet& tet = mesh_.tets[t];
-    if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) return {};
-    if (tet.vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
-      const FaceRef across = tet.neighbor[static_cast<std::size_t>(f)];
-      t = ref_tet(across);
-      f = ref_face(across);
-    }
+    if (!mesh_.tets.is_alive(t, std::memory_order_acquire) || !finite_side(t, f)) return {};
     std::uint64_t count = 0;
     stack_.clear();
     std::vector<TetId> created;
@@ -582,6 +576,16 @@ class IncrementalDelaunay {
   }
 
  private:
+  // Names face f of t from the side of its finite apex (a face has at most one infinite apex on a
+  // sound mesh): false where both apexes are infinite.
+  bool finite_side(TetId& t, int& f) const {
+    if (mesh_.tets[t].vertex[static_cast<std::size_t>(f)] != kInfiniteVertex) return true;
+    const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(f)];
+    t = ref_tet(across);
+    f = ref_face(across);
+    return mesh_.tets[t].vertex[static_cast<std::size_t>(f)] != kInfiniteVertex;
+  }
+
   // Lawson flips from `faces` (tetrahedron, face) until none is left or `bound` flips were made;
   // the faces of every new tetrahedron follow. A face is tested from the side of its finite apex.
   // `stuck`, when given, receives the faces found non-Delaunay where no flip exists (and those
@@ -599,17 +603,11 @@ class IncrementalDelaunay {
       auto [t, f] = faces.back();
       faces.pop_back();
       if (!mesh_.tets.is_alive(t, std::memory_order_acquire)) continue;
-      if (mesh_.tets[t].vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
-        // Test the face from the finite side (a face has at most one infinite apex).
-        const FaceRef across = mesh_.tets[t].neighbor[static_cast<std::size_t>(f)];
-        t = ref_tet(across);
-        f = ref_face(across);
+      if (!finite_side(t, f)) {
         // Two infinite tetrahedra glued on one face: a mesh the fast kernel broke (seen after
         // its burglary runs). No flip applies; the face stays for the validator to count.
-        if (mesh_.tets[t].vertex[static_cast<std::size_t>(f)] == kInfiniteVertex) {
-          if (stuck != nullptr) stuck->emplace_back(t, f);
-          continue;
-        }
+        if (stuck != nullptr) stuck->emplace_back(t, f);
+        continue;
       }
       const Tet& tet = mesh_.tets[t];
       const Tet& other = mesh_.tets[ref_tet(tet.neighbor[static_cast<std::size_t>(f)])];

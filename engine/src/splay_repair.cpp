@@ -613,10 +613,14 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     stars_of_mesh.tetrahedra_of(v, around);
     for (const Quad& q : around) seed_quad(q);
   }
-  std::vector<VertexId> seeds;
-  for (VertexId v = 0; v < points.size(); ++v) {
-    if (seed[v] != 0 && canonical[v] == v) seeds.push_back(v);
-  }
+  auto seeded_vertices = [&] {
+    std::vector<VertexId> out;
+    for (VertexId v = 0; v < points.size(); ++v) {
+      if (seed[v] != 0 && canonical[v] == v) out.push_back(v);
+    }
+    return out;
+  };
+  std::vector<VertexId> seeds = seeded_vertices();
   // Flips first (--repair=flips-splay), on a consistent mesh where every distinct point is a
   // vertex: the tetrahedra at the seeds hold every non-Delaunay face, and what the flips leave of
   // those is what the stars must repair. The flips keep the mesh consistent, so the walks still
@@ -653,10 +657,7 @@ void splay_shared_mesh(SharedMesh& mesh, const std::vector<TetId>& marks, bool e
     stats.faces_left = left.size() / 2;
     std::fill(seed.begin(), seed.end(), 0);
     for (const Quad& q : left) seed_quad(q);
-    seeds.clear();
-    for (VertexId v = 0; v < points.size(); ++v) {
-      if (seed[v] != 0) seeds.push_back(v);
-    }
+    seeds = seeded_vertices();
     stats.seconds_flipping = std::chrono::duration<double>(Clock::now() - flipping).count();
   }
   stats.seeds = seeds.size();
