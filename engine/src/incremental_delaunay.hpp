@@ -525,10 +525,10 @@ class IncrementalDelaunay {
   // are handed on as they are). Returns the flips; `created` gets every tetrahedron they made (some
   // dead again by the end), `left` the vertices of the two tetrahedra of each face still
   // non-Delaunay at the end (once a face), where no flip applied or the bound stopped the pass
-  // before its turn: star splaying's seeds. Each
-  // face is tested on its last pair of tetrahedra, since the faces of every new tetrahedron are
-  // queued after its creation, so no face is non-Delaunay at the end but those in `left` and
-  // those that already were, outside `tets` (docs/design.md, "Flips, then star splaying").
+  // before its turn: star splaying's seeds. Each face is tested on its last pair of tetrahedra,
+  // since the faces of every new tetrahedron are queued after its creation, so no face is
+  // non-Delaunay at the end but those in `left` and those that already were, outside `tets`
+  // (docs/design.md, "Flips, then star splaying").
   std::uint64_t flip_from(const std::vector<TetId>& tets, std::vector<TetId>& created,
                           std::vector<Quad>& left,
                           std::uint64_t max_flips = std::numeric_limits<std::uint64_t>::max()) {
