@@ -23,12 +23,6 @@ namespace {
   std::abort();
 }
 
-std::vector<dtlab::engine::Tetrahedron> canonical(std::vector<dtlab::engine::Tetrahedron> t) {
-  for (auto& x : t) std::sort(x.begin(), x.end());
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -50,13 +44,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto repaired = dtlab::engine::repair(points, tets, stats);
     if (dimension != 3) fail("repaired a point set without a tetrahedralization");
     const auto delaunay = dtlab::engine::triangulate(points, {}).tetrahedra;
-    if (canonical(repaired) != canonical(delaunay)) {
+    if (dtlab::engine::canonical_tetrahedra(repaired) !=
+        dtlab::engine::canonical_tetrahedra(delaunay)) {
       fail("the repaired mesh is not the Delaunay tetrahedralization");
     }
     auto dropped = delaunay;
     dropped.erase(dropped.begin() + static_cast<std::ptrdiff_t>(data[size - 1] % dropped.size()));
     dtlab::engine::SplayStats again;
-    if (canonical(dtlab::engine::repair(points, dropped, again)) != canonical(delaunay)) {
+    if (dtlab::engine::canonical_tetrahedra(dtlab::engine::repair(points, dropped, again)) !=
+        dtlab::engine::canonical_tetrahedra(delaunay)) {
       fail("the Delaunay mesh less one tetrahedron was not repaired into it");
     }
   } catch (const dtlab::engine::TriangulationError& e) {

@@ -1,8 +1,8 @@
 #pragma once
 // The vertices of a point set in a uniform grid of cells over their bounding box, searched in
 // shells of cells around a point's cell (the cells at Chebyshev distance r): star splaying's first
-// stars for points no tetrahedron uses (splay_repair.cpp) and the bridges between pieces of
-// agreeing stars (star_pieces.cpp).
+// stars for points no tetrahedron uses (NearGrid, splay_common.hpp) and the bridges between
+// pieces of agreeing stars (star_pieces.cpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
