@@ -54,8 +54,11 @@ struct LockTable {
   static constexpr std::uint32_t kBurgled = 0x8000'0000U;
   // A lock word is the owner's id, plus kLogged once the owner has saved the tetrahedron in its
   // undo log (or created it): the owner asks its own word, already in cache, instead of a set.
+  // The word's top bit is the tetrahedron's aliveness (TetStore::kAliveBit), which the owner
+  // sets and clears and every other write keeps.
   static constexpr std::uint32_t kLogged = 0x4000'0000U;
-  static std::uint32_t owner_of(std::uint32_t word) { return word & ~kLogged; }
+  static constexpr std::uint32_t kAlive = TetStore::kAliveBit;
+  static std::uint32_t owner_of(std::uint32_t word) { return word & ~(kLogged | kAlive); }
   std::mutex cycle;
   std::atomic<bool> stop{false};  // watchdog: give everything up
 };
@@ -143,16 +146,18 @@ class OptimisticSync {
     bool waited = false;
     std::uint32_t registered_owner = 0;
     for (std::uint64_t spin = 0;; ++spin) {
-      std::uint32_t owner = 0;
+      // Free: no owner, the aliveness as the last owner left it (only an owner changes it).
+      std::uint32_t seen = word.load(std::memory_order_relaxed) & LockTable::kAlive;
       // acquire: what the previous owner wrote under the lock is visible from here on.
-      if (word.compare_exchange_strong(owner, self_, std::memory_order_acq_rel,
+      if (word.compare_exchange_strong(seen, seen | self_, std::memory_order_acq_rel,
                                        std::memory_order_acquire)) {
         held_.push_back(t);
         if (waited && !stop_waiting()) return false;  // burgled after all: keep t in held_
         maybe_delay();
         return true;
       }
-      owner = LockTable::owner_of(owner);  // burglary never sets kLogged: its words stay exact
+      const std::uint32_t owner = LockTable::owner_of(seen);
+      if (owner == 0) continue;  // freed between the load and the compare-and-swap
       if (owner == self_) return true;
       if (table_.stop.load(std::memory_order_relaxed)) {
         stop_waiting();
@@ -160,16 +165,17 @@ class OptimisticSync {
       }
       if (mode_ == Mode::Burglary) {
         if (burgled()) return false;
-        // The picklock: a victim of this thread holds t.
+        // The picklock: a victim of this thread holds t (burglary never sets kLogged, so the
+        // word is the owner and the aliveness).
         if (table_.waiting_for[owner].load(std::memory_order_acquire) ==
                 (LockTable::kBurgled | self_) &&
-            word.compare_exchange_strong(owner, self_, std::memory_order_acq_rel,
-                                         std::memory_order_acquire)) {
+            word.compare_exchange_strong(seen, (seen & LockTable::kAlive) | self_,
+                                         std::memory_order_acq_rel, std::memory_order_acquire)) {
           held_.push_back(t);
           if (waited && !stop_waiting()) return false;
           return true;
         }
-        if (owner == 0) continue;  // released meanwhile: take it normally
+        if (LockTable::owner_of(seen) == 0) continue;  // released meanwhile: take it normally
       }
       if (!waited) {
         waited = true;
@@ -211,8 +217,9 @@ class OptimisticSync {
     // this thread writes the word while it holds t. release: a find_cycle that reads this value
     // still synchronizes with everything before the compare-and-swap that took t.
     std::atomic<std::uint32_t>& word = mesh_.tets.lock_word(t);
-    if ((word.load(std::memory_order_relaxed) & LockTable::kLogged) != 0) return;
-    word.store(self_ | LockTable::kLogged, std::memory_order_release);
+    const std::uint32_t held = word.load(std::memory_order_relaxed);
+    if ((held & LockTable::kLogged) != 0) return;
+    word.store(held | LockTable::kLogged, std::memory_order_release);
     const Tet& tet = mesh_.tets[t];
     // Only live tetrahedra are written: each is the located leaf (checked after locking), an old
     // one of the replacement, or a neighbour of a locked live one (whoever kills it rewrites that
@@ -234,6 +241,7 @@ class OptimisticSync {
   // resume() can follow it and the lists they read need not hold t.
   void created(TetId t, bool last_write = false) {
     // Owned before it is published: nobody can lock it before this thread lets go. Never logged.
+    // Not alive yet (the replacement sets it alive once linked).
     mesh_.tets.lock_word(t).store(mode_ == Mode::Burglary ? self_ : self_ | LockTable::kLogged,
                                   std::memory_order_relaxed);
     held_.push_back(t);
@@ -434,16 +442,23 @@ class OptimisticSync {
     if (mode_ != Mode::Burglary || ended_) {
       // release: this thread's writes are visible to the next owner. Nobody else writes a word
       // this thread holds, so a plain store does (no locked instruction per tetrahedron).
-      for (const TetId t : held_) mesh_.tets.lock_word(t).store(0, std::memory_order_release);
+      // The aliveness stays in the word.
+      for (const TetId t : held_) {
+        std::atomic<std::uint32_t>& word = mesh_.tets.lock_word(t);
+        word.store(word.load(std::memory_order_relaxed) & LockTable::kAlive,
+                   std::memory_order_release);
+      }
       held_.clear();
       return;
     }
     for (const TetId t : held_) {
       // release, as above. A compare-and-swap, because a burglar may have taken the lock
       // meanwhile (then it is the burglar's to release).
-      std::uint32_t expected = self_;
-      mesh_.tets.lock_word(t).compare_exchange_strong(expected, 0, std::memory_order_release,
-                                                      std::memory_order_relaxed);
+      std::atomic<std::uint32_t>& word = mesh_.tets.lock_word(t);
+      std::uint32_t expected = word.load(std::memory_order_relaxed);
+      if (LockTable::owner_of(expected) != self_) continue;
+      word.compare_exchange_strong(expected, expected & LockTable::kAlive,
+                                   std::memory_order_release, std::memory_order_relaxed);
     }
     held_.clear();
   }

@@ -126,9 +126,10 @@ class TetStore {
 
   // Whether slot t holds a live tetrahedron. Dead tetrahedra are DAG history (or, in walk mode,
   // free slots).
-  // - Where other threads read the mesh (lock words) or dead records are read (DAG children): a
-  //   byte per slot, in an array after the block's slots (a byte in the slot would cost the
-  //   alignment of the next record); release on death and birth, acquire on reading.
+  // - Where other threads read the mesh (lock words): kAliveBit of the slot's lock word, in the
+  //   record's cache line; release on death and birth, acquire on reading.
+  // - Where only dead records are read (DAG children, one thread): a byte per slot, in an array
+  //   after the block's slots (a byte in the slot would cost the alignment of the next record).
   // - A sequential walk keeps neither: nobody reads a dead record there (the walk's remembered
   //   start and the legalization's stack ask first), so death writes kDeadVertex into the
   //   record's last vertex, and birth is writing the record. 32 bytes a slot instead of 33.
@@ -138,6 +139,7 @@ class TetStore {
   [[nodiscard, gnu::always_inline]] bool is_alive(
       TetId t, std::memory_order order = std::memory_order_acquire) const {
     if (alive_in_record_) return (*this)[t].vertex[3] != kDeadVertex;
+    if (lock_words_) return (lock_word(t).load(order) & kAliveBit) != 0;
     return alive_flag(t).load(order);
   }
   // The order is a template argument: a run-time one makes GCC store with seq_cst (an xchg on
@@ -150,10 +152,24 @@ class TetStore {
       assert(!alive || (*this)[t].vertex[3] != kDeadVertex);  // born by writing the record
       return;
     }
+    if (lock_words_) {
+      // Only t's lock holder (or the only thread, or the creator of an unpublished slot) writes
+      // its word, so a load and a store keep the owner's bits: other threads' compare-and-swaps
+      // fail while it is held.
+      std::atomic<std::uint32_t>& word = lock_word(t);
+      const std::uint32_t w = word.load(std::memory_order_relaxed);
+      word.store(alive ? (w | kAliveBit) : (w & ~kAliveBit), Order);
+      return;
+    }
     alive_flag(t).store(alive, Order);
   }
-  // Owner of t's lock (thread id + 1), 0 when free. Only where has_lock_words().
-  std::atomic<std::uint32_t>& lock_word(TetId t) {
+  // Where lock words exist, a tetrahedron's aliveness is this bit of its word (the lock methods
+  // keep the other bits: optimistic_sync.hpp), read with the record's own cache line instead of
+  // a byte array's.
+  static constexpr std::uint32_t kAliveBit = 0x8000'0000U;
+  // Owner of t's lock (thread id + 1; 0 when free) in the bits below kAliveBit and the lock
+  // methods' own flag (optimistic_sync.hpp). Only where has_lock_words().
+  [[gnu::always_inline]] std::atomic<std::uint32_t>& lock_word(TetId t) const {
     assert(lock_words_);
     return *std::launder(reinterpret_cast<std::atomic<std::uint32_t>*>(slot(t) + sizeof(Tet)));
   }
@@ -283,7 +299,7 @@ class TetStore {
   // build the output in the memory the store gives up. (malloc would serve them from its heap
   // once a larger block had been freed, and keep them there.)
   // A block: kBlockSize slots (stride_ bytes each), then their alive flags (1 byte each) unless
-  // the records carry them.
+  // the records or their lock words carry them.
   [[nodiscard, gnu::always_inline]] char* block_of(TetId t) const {
     return blocks_[t >> kBlockBits].load(std::memory_order_acquire);
   }
@@ -296,7 +312,7 @@ class TetStore {
   }
   [[nodiscard]] std::size_t alive_offset() const { return kBlockSize * stride_; }
   [[nodiscard]] std::size_t block_bytes() const {
-    return alive_offset() + (alive_in_record_ ? 0 : kBlockSize);
+    return alive_offset() + (alive_in_record_ || lock_words_ ? 0 : kBlockSize);
   }
   [[nodiscard]] std::size_t children_offset() const {
     return sizeof(Tet) + (lock_words_ ? sizeof(std::uint32_t) : 0);
@@ -318,7 +334,7 @@ class TetStore {
       new (block + i * stride_) Tet();
       if (lock_words_) new (block + i * stride_ + sizeof(Tet)) std::atomic<std::uint32_t>(0);
       if (children_) new (block + i * stride_ + children_offset()) Children{};
-      new (block + alive_offset() + i) std::atomic<bool>(false);
+      if (!lock_words_) new (block + alive_offset() + i) std::atomic<bool>(false);
     }
     return block;
   }
