@@ -141,7 +141,7 @@ TEST(EpochTable, FindOrInsertInsertsOnlyNewKeys) {
 // slot other than the three it wrote into), those three are dead again, and they come back for
 // the next allocation (not leaked). The whole boundary then replaces the tetrahedron by four
 // around the point, glued to each other and to the outside both ways. `shared`: a parallel
-// walk's store (alive flags beside the records, lock words) with an epoch reclaimer, where the
+// walk's store (lock words, aliveness their top bit) with an epoch reclaimer, where the
 // slots given back also leave the attempt's list; otherwise a sequential walk's (aliveness in
 // the record itself), no reclaimer.
 void expect_open_boundary_changes_no_live_record(bool shared) {

@@ -156,7 +156,7 @@ class OptimisticSync {
         maybe_delay();
         return true;
       }
-      const std::uint32_t owner = LockTable::owner_of(seen);
+      std::uint32_t owner = LockTable::owner_of(seen);
       if (owner == 0) continue;  // freed between the load and the compare-and-swap
       if (owner == self_) return true;
       if (table_.stop.load(std::memory_order_relaxed)) {
@@ -175,7 +175,8 @@ class OptimisticSync {
           if (waited && !stop_waiting()) return false;
           return true;
         }
-        if (LockTable::owner_of(seen) == 0) continue;  // released meanwhile: take it normally
+        owner = LockTable::owner_of(seen);  // as the picklock's compare-and-swap found it
+        if (owner == 0) continue;           // released meanwhile: take it normally
       }
       if (!waited) {
         waited = true;
@@ -223,8 +224,8 @@ class OptimisticSync {
     const Tet& tet = mesh_.tets[t];
     // Only live tetrahedra are written: each is the located leaf (checked after locking), an old
     // one of the replacement, or a neighbour of a locked live one (whoever kills it rewrites that
-    // reference, under the lock). So the flag need not be read (its own cache line): rollback
-    // makes every logged one alive again.
+    // reference, under the lock). So rollback makes every logged one alive again without
+    // having recorded its aliveness.
     assert(mesh_.tets.is_alive(t, std::memory_order_relaxed));
     // Filled in place: an entry built on the stack from overlapping stores and copied by wider
     // loads stalled on store forwarding (two fifths of this function's samples).
