@@ -781,6 +781,48 @@ TEST(ParallelMethods, DetectGivesUpOnRealDeadlocksOnly) {
   }
 }
 
+// Where lock words exist, a tetrahedron's aliveness is their top bit (TetStore::kAliveBit): taking,
+// logging, releasing and rolling back a lock keep it, only the owner's set_alive changes it, and
+// owner_of never reads it as part of an owner.
+TEST(ParallelMethods, LocksKeepTheAliveBit) {
+  for (const auto mode : {OptimisticSync::Mode::Detect, OptimisticSync::Mode::Burglary}) {
+    LockFixture f(2, 2);
+    const TetId a = f.ids[0];
+    const TetId b = f.ids[1];
+    auto word = [&](TetId t) { return f.mesh.tets.lock_word(t).load(); };
+    f.mesh.tets.set_alive(a, true);
+    ThreadStats stats;
+    OptimisticSync sync(f.mesh, f.table, 1, mode, stats, false);
+    ASSERT_TRUE(sync.acquire(a));
+    ASSERT_TRUE(sync.acquire(b));
+    EXPECT_EQ(LockTable::owner_of(word(a)), 1u);
+    EXPECT_TRUE(f.mesh.tets.is_alive(a));
+    EXPECT_FALSE(f.mesh.tets.is_alive(b));
+    sync.before_write(a);
+    f.mesh.tets.set_alive(a, false);  // the owner replaces a by b
+    f.mesh.tets.set_alive(b, true);
+    EXPECT_EQ(LockTable::owner_of(word(a)), 1u);
+    EXPECT_EQ(LockTable::owner_of(word(b)), 1u);
+    sync.commit();
+    EXPECT_EQ(word(a), 0u);
+    EXPECT_EQ(word(b), engine::TetStore::kAliveBit);
+    // Another thread takes the free, live b: its compare-and-swap keeps the bit.
+    OptimisticSync other(f.mesh, f.table, 2, mode, stats, false);
+    ASSERT_TRUE(other.acquire(b));
+    EXPECT_TRUE(f.mesh.tets.is_alive(b));
+    EXPECT_EQ(LockTable::owner_of(word(b)), 2u);
+    if (mode == OptimisticSync::Mode::Detect) {
+      // A logged tetrahedron killed and then rolled back is alive again, its lock free.
+      other.before_write(b);
+      f.mesh.tets.set_alive(b, false);
+      other.rollback();
+    } else {
+      other.commit();
+    }
+    EXPECT_EQ(word(b), engine::TetStore::kAliveBit);
+  }
+}
+
 TEST(ParallelMethods, PreventWaitsWhenHoldingNoLock) {
   LockFixture f(2, 2);
   const TetId a = f.ids[0];

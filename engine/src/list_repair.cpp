@@ -293,16 +293,8 @@ std::vector<Tetrahedron> repair(const std::vector<Point3>& points,
   if (threads == kAllThreads) {
     threads = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
   }
-  double max_abs = 0.0;
-  double min_abs = 0.0;
-  for (const Point3& p : points) {
-    for (const double c : {p.x, p.y, p.z}) {
-      if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
-      const double m = std::fabs(c);
-      max_abs = std::max(max_abs, m);
-      if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
-    }
-  }
+  const CoordinateMagnitudes magnitudes = coordinate_magnitudes(points);
+  if (!magnitudes.finite) throw TriangulationError("input has a NaN or infinite coordinate");
   for (const Tetrahedron& t : tets) {
     for (const VertexId v : t) {
       if (v >= points.size()) throw TriangulationError("a tetrahedron names a missing vertex");
@@ -312,7 +304,8 @@ std::vector<Tetrahedron> repair(const std::vector<Point3>& points,
     throw TriangulationError("no tetrahedralization exists: the points span less than 3D");
   }
   // The engine's lossless power-of-two scaling keeps the exact stages off their GMP fallback.
-  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+  const RangeScaling scaling =
+      adaptive_range_scaling(magnitudes.max_abs, magnitudes.min_abs_nonzero);
   if (!scaling.lossless) return repair_list(points, tets, stats, threads);
   std::vector<Point3> scaled = points;
   for (Point3& p : scaled) {

@@ -61,6 +61,19 @@ RangeScaling adaptive_range_scaling(double max_abs, double min_abs_nonzero) {
   return r;
 }
 
+CoordinateMagnitudes coordinate_magnitudes(const std::vector<Point3>& points) {
+  CoordinateMagnitudes r;
+  for (const Point3& p : points) {
+    for (const double c : {p.x, p.y, p.z}) {
+      r.finite = r.finite && std::isfinite(c);
+      const double m = std::fabs(c);
+      r.max_abs = std::max(r.max_abs, m);
+      if (m > 0.0 && (r.min_abs_nonzero == 0.0 || m < r.min_abs_nonzero)) r.min_abs_nonzero = m;
+    }
+  }
+  return r;
+}
+
 PointSetInfo analyze(const std::vector<Point3>& points) {
   PointSetInfo info;
   info.count = points.size();
@@ -69,14 +82,10 @@ PointSetInfo analyze(const std::vector<Point3>& points) {
   for (const Point3& p : points) {
     info.min = {std::min(info.min.x, p.x), std::min(info.min.y, p.y), std::min(info.min.z, p.z)};
     info.max = {std::max(info.max.x, p.x), std::max(info.max.y, p.y), std::max(info.max.z, p.z)};
-    for (const double c : {p.x, p.y, p.z}) {
-      const double m = std::fabs(c);
-      info.max_abs = std::max(info.max_abs, m);
-      if (m > 0.0 && (info.min_abs_nonzero == 0.0 || m < info.min_abs_nonzero)) {
-        info.min_abs_nonzero = m;
-      }
-    }
   }
+  const CoordinateMagnitudes magnitudes = coordinate_magnitudes(points);
+  info.max_abs = magnitudes.max_abs;
+  info.min_abs_nonzero = magnitudes.min_abs_nonzero;
   std::vector<Point3> sorted = points;
   std::sort(sorted.begin(), sorted.end(), predicates::lexicographically_less);
   info.distinct =

@@ -325,16 +325,8 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
     throw TriangulationError("too many points for 32-bit vertex ids");
   }
 
-  double max_abs = 0.0;
-  double min_abs = 0.0;
-  for (const Point3& p : points) {
-    for (const double c : {p.x, p.y, p.z}) {
-      if (!std::isfinite(c)) throw TriangulationError("input has a NaN or infinite coordinate");
-      const double m = std::fabs(c);
-      max_abs = std::max(max_abs, m);
-      if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
-    }
-  }
+  const CoordinateMagnitudes magnitudes = coordinate_magnitudes(points);
+  if (!magnitudes.finite) throw TriangulationError("input has a NaN or infinite coordinate");
   // The first tetrahedron and the walk mode's order come from the input as given.
   std::vector<std::uint32_t> order = random_order(input_count, options.seed);
   const SimplexSearch search = find_simplex(points, order);
@@ -372,7 +364,8 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   // the points are handed back. Every input is taken: when some coordinates still lie outside the
   // range where expansion arithmetic is exact (valid_range.hpp), the adaptive and filtered kernels
   // hand the calls their float stage cannot decide to GMP.
-  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+  const RangeScaling scaling =
+      adaptive_range_scaling(magnitudes.max_abs, magnitudes.min_abs_nonzero);
   if (scaling.lossless) {
     stats.scale_exponent = scaling.exponent;
     scale_points(points, scaling.exponent, threads);

@@ -499,19 +499,9 @@ ValidationReport validate(const std::vector<Point3>& points, const std::vector<T
   ValidationReport r;
   r.points = points.size();
   r.tetrahedra = tets.size();
-  double max_abs = 0.0;
-  double min_abs = 0.0;
-  bool finite = true;
-  for (const Point3& p : points) {
-    for (const double c : {p.x, p.y, p.z}) {
-      finite = finite && std::isfinite(c);
-      const double m = std::fabs(c);
-      max_abs = std::max(max_abs, m);
-      if (m > 0.0 && (min_abs == 0.0 || m < min_abs)) min_abs = m;
-    }
-  }
+  const CoordinateMagnitudes magnitudes = coordinate_magnitudes(points);
   // Non-finite points are refused by the readers and by triangulate(); here they cannot be judged.
-  if (!finite) throw std::invalid_argument("validate: a coordinate is NaN or infinite");
+  if (!magnitudes.finite) throw std::invalid_argument("validate: a coordinate is NaN or infinite");
   // Faces are named 4 * tetrahedron + face in 32 bits.
   if (tets.size() >= (std::size_t{1} << 30)) {
     throw std::length_error("validate: more than 2^30 - 1 tetrahedra");
@@ -526,7 +516,8 @@ ValidationReport validate(const std::vector<Point3>& points, const std::vector<T
   }
   // The adaptive kernel is exact for every finite double (GMP fallback outside the expansion
   // range); the same lossless power-of-two scaling as the engine keeps most calls off that path.
-  const RangeScaling scaling = adaptive_range_scaling(max_abs, min_abs);
+  const RangeScaling scaling =
+      adaptive_range_scaling(magnitudes.max_abs, magnitudes.min_abs_nonzero);
   if (scaling.lossless) {
     std::vector<Point3> scaled = points;
     for (Point3& p : scaled) {

@@ -40,6 +40,15 @@ struct SimplexSearch {
 SimplexSearch find_simplex(const std::vector<Point3>& points,
                            const std::vector<std::uint32_t>& order);
 
+// The coordinates' largest magnitude and smallest nonzero one (0 where every coordinate is 0),
+// and whether all are finite: what the engine, the validator and the repair scale by.
+struct CoordinateMagnitudes {
+  double max_abs = 0.0;
+  double min_abs_nonzero = 0.0;
+  bool finite = true;
+};
+CoordinateMagnitudes coordinate_magnitudes(const std::vector<Point3>& points);
+
 // The power-of-two scaling of the engine and the validator.
 struct RangeScaling {
   int exponent = 0;  // 2^exponent * max|coordinate| lies in [2^99, 2^100)
