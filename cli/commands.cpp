@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/repair.hpp"
 #include "dtlab/engine/validator.hpp"
@@ -45,6 +46,24 @@ int run_generate(const std::string& family, std::int64_t n, std::uint64_t seed,
   return 0;
 }
 
+int run_methods() {
+  auto either = [](bool a, bool b, const char* first, const char* second) {
+    return a && b ? std::string(first) + ", " + second : std::string(a ? first : second);
+  };
+  std::printf("| method | what it does | threads | location | insertion | post-check |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  for (const engine::MethodInfo& m : engine::methods()) {
+    const std::string threads = !m.parallel ? "1"
+                                : m.min_threads > 1
+                                    ? "T (at least " + std::to_string(m.min_threads) + ")"
+                                    : "T";
+    std::printf("| `%s` | %s | %s | %s | %s | %s |\n", m.name, m.summary, threads.c_str(),
+                either(m.dag, m.walk, "dag", "walk").c_str(),
+                either(m.flips, m.cavity, "flips", "cavity").c_str(), m.post_check ? "yes" : "-");
+  }
+  return 0;
+}
+
 int run_info(const std::string& input, std::uint64_t seed) {
   const auto points = load_input(input, seed);
   const engine::PointSetInfo info = engine::analyze(points);
@@ -77,16 +96,12 @@ int run_info(const std::string& input, std::uint64_t seed) {
 }
 
 int run_triangulate(const TriangulateArgs& args) {
-  if (args.options.method == engine::Method::Sequential && args.threads != 1) {
-    throw std::invalid_argument("the sequential method runs on one thread (--threads 1)");
+  if (!engine::method_info(args.options.method).parallel && args.threads != 1) {
+    throw std::invalid_argument(std::string("the ") + engine::to_string(args.options.method) +
+                                " method runs on one thread (--threads 1)");
   }
-  if ((args.options.repair == engine::Repair::Flips ||
-       args.options.repair == engine::Repair::Rebuild) &&
-      args.options.method != engine::Method::Burglary) {
-    throw std::invalid_argument(
-        "--repair=flips and --repair=rebuild are the burglary method's post-check (--method "
-        "burglary); --repair (star splaying) works with every method");
-  }
+  // What the engine refuses, refused before the input is read.
+  if (const auto why = engine::unsupported(args.options)) throw std::invalid_argument(*why);
   if (args.threads < 1 || args.threads > 1024) {
     throw std::invalid_argument("--threads must be in [1, 1024]");
   }

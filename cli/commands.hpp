@@ -28,6 +28,8 @@ int run_validate(const std::string& points, const std::string& mesh, engine::Val
                  int threads);
 int run_repair(const std::string& points, const std::string& mesh, const std::string& output,
                const std::string& stats, bool validate, int threads);
+// The method registry (dtlab/engine/methods.hpp) as a Markdown table: docs/design.md holds it.
+int run_methods();
 int run_predicates_audit(const std::string& input, std::uint64_t seed, engine::KernelKind kernel);
 
 }  // namespace dtlab::cli

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/experiments/experiment.hpp"
 #include "dtlab/io/input_error.hpp"
@@ -63,22 +64,20 @@ int main(int argc, char** argv) {
                   "whichever kernel is chosen (so the fast kernel's failure tables do not include "
                   "those two steps)")
       ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
-  const std::map<std::string, dtlab::engine::Method> methods{
-      {"sequential", dtlab::engine::Method::Sequential},
-      {"pessimistic", dtlab::engine::Method::Pessimistic},
-      {"optimistic-detect", dtlab::engine::Method::OptimisticDetect},
-      {"optimistic-prevent", dtlab::engine::Method::OptimisticPrevent},
-      {"burglary", dtlab::engine::Method::Burglary},
-      {"batch", dtlab::engine::Method::Batch}};
+  // The methods as the registry lists them (dtlab/engine/methods.hpp).
+  std::map<std::string, dtlab::engine::Method> methods;
+  std::string method_help = dtlab::engine::method_names() + ":";
+  for (const dtlab::engine::MethodInfo& m : dtlab::engine::methods()) {
+    methods.emplace(m.name, m.method);
+    method_help += std::string("\n  ") + m.name + ": " + m.summary;
+  }
   const std::map<std::string, dtlab::engine::Distribution> distributions{
       {"static", dtlab::engine::Distribution::Static},
       {"dynamic", dtlab::engine::Distribution::Dynamic},
       {"strips", dtlab::engine::Distribution::Strips},
       {"blocks", dtlab::engine::Distribution::Blocks},
       {"auto", dtlab::engine::Distribution::Auto}};
-  tri->add_option(
-         "--method", targs.options.method,
-         "sequential | pessimistic | optimistic-detect | optimistic-prevent | burglary | batch")
+  tri->add_option("--method", targs.options.method, method_help)
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case));
   tri->add_option("--threads", targs.threads,
                   "worker threads (batch: T - 1 locating threads and one inserting thread, at "
@@ -195,6 +194,9 @@ int main(int argc, char** argv) {
                          "beside the source tree)");
   experiment->add_flag("--no-plot", no_plot, "write no PNG (no python3 or matplotlib needed)");
 
+  auto* methods_cmd = app.add_subcommand(
+      "methods", "the methods --method takes, what each does and supports (a Markdown table)");
+
   KernelKind audit_kernel = KernelKind::Adaptive;
   auto* audit =
       app.add_subcommand("predicates-audit", "predicate calls per stage while triangulating INPUT");
@@ -230,6 +232,7 @@ int main(int argc, char** argv) {
                                     repair_validate, repair_threads);
     }
     if (*audit) return dtlab::cli::run_predicates_audit(input, seed, audit_kernel);
+    if (*methods_cmd) return dtlab::cli::run_methods();
     if (*experiment) {
       if (list_studies) {
         for (const auto& s : dtlab::experiments::list_studies()) {

@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // Cavity insertion (--insertion cavity, Bowyer-Watson): the pairing of a cavity's boundary edges,
 // the search's table of tested tetrahedra, the mode's rules (walk mode only), its stats, and its
 // result against the flips' on every kernel; the fast kernel's cavities that are no star fall back
@@ -11,16 +12,17 @@
 #include <string>
 #include <vector>
 
-#include "cavity_edges.hpp"
-#include "cavity_face.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
-#include "epoch_table.hpp"
-#include "shared_mesh.hpp"
-#include "slot_allocator.hpp"
-#include "slot_reclaimer.hpp"
-#include "tet_replacement.hpp"
+#include "insertion/cavity_edges.hpp"
+#include "insertion/cavity_face.hpp"
+#include "insertion/epoch_table.hpp"
+#include "insertion/sync.hpp"
+#include "insertion/tet_replacement.hpp"
+#include "mesh/shared_mesh.hpp"
+#include "mesh/slot_allocator.hpp"
+#include "mesh/slot_reclaimer.hpp"
 
 namespace dtlab::test {
 namespace {

@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // Subdivisions and swaps on hand-built configurations, bad input, and the validator catching
 // each kind of broken mesh.
 #include <gtest/gtest.h>
@@ -10,7 +11,7 @@
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/predicates/kernels.hpp"
-#include "incremental_delaunay.hpp"
+#include "insertion/inserter.hpp"
 #include "validator_recount.hpp"
 
 namespace dtlab::test {

@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // The helpers that spread a whole-array step over the run's threads: every index or bucket is
 // visited once, and an exception on a helper thread reaches the caller instead of terminating.
 #include <gtest/gtest.h>
@@ -9,8 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "parallel_ranges.hpp"
-#include "vertex_buckets.hpp"
+#include "support/parallel_ranges.hpp"
+#include "validate/vertex_buckets.hpp"
 
 namespace dtlab::engine {
 namespace {

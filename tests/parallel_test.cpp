@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // The parallel methods: one thread gives the sequential mesh; several threads (oversubscribed on
 // purpose, with random delays while locks are held) give a valid mesh on every hard family; the
 // distributions cover every point once; the stats count every phase. The lock policy's cycle
@@ -12,24 +13,30 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 
 #include "dtlab/engine/repair.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/predicates/kernels.hpp"
-#include "incremental_delaunay.hpp"
-#include "optimistic_sync.hpp"
-#include "parallel_methods.hpp"
+#include "insertion/inserter.hpp"
+#include "methods/burglary.hpp"
+#include "methods/distribution.hpp"
+#include "methods/lock_table.hpp"
+#include "methods/optimistic_detect.hpp"
+#include "methods/optimistic_prevent.hpp"
 
 namespace dtlab::test {
 namespace {
 
+using engine::BurglarySync;
 using engine::Cycle;
+using engine::DetectSync;
 using engine::Distribution;
 using engine::LockTable;
 using engine::Method;
-using engine::OptimisticSync;
+using engine::PreventSync;
 using engine::TetId;
 using engine::ThreadStats;
 using predicates::Point3;
@@ -679,7 +686,8 @@ struct LockFixture {
   void own(TetId t, std::uint32_t thread) {
     mesh.tets.lock_word(t).store(thread, std::memory_order_release);
   }
-  // "thread waits for t, owned by owner", registered as OptimisticSync registers it.
+  // "thread waits for t, owned by owner", registered as LockWords::register_wait_locked registers
+  // it.
   void wait(std::uint32_t thread, TetId t, std::uint32_t owner) {
     std::lock_guard<std::mutex> guard(table.cycle);
     table.waiting_on[thread] = t;
@@ -742,7 +750,7 @@ TEST(ParallelMethods, DetectGivesUpOnRealDeadlocksOnly) {
     const TetId a = f.ids[0];
     const TetId b = f.ids[1];
     ThreadStats stats;
-    OptimisticSync sync(f.mesh, f.table, 1, OptimisticSync::Mode::Detect, stats, false);
+    DetectSync sync(f.mesh, f.table, 1, stats, false);
     ASSERT_TRUE(sync.acquire(a));
     f.own(b, 2);
     f.wait(2, a, 1);
@@ -762,7 +770,7 @@ TEST(ParallelMethods, DetectGivesUpOnRealDeadlocksOnly) {
     f.own(b, 2);
     f.wait(2, a, 1);
     ThreadStats stats;
-    OptimisticSync sync(f.mesh, f.table, 1, OptimisticSync::Mode::Detect, stats, false);
+    DetectSync sync(f.mesh, f.table, 1, stats, false);
     std::atomic<bool> done{false};
     std::thread owner([&] {
       // Let b go once 1's wait is registered and checked (the mutex is free again).
@@ -785,14 +793,14 @@ TEST(ParallelMethods, DetectGivesUpOnRealDeadlocksOnly) {
 // logging, releasing and rolling back a lock keep it, only the owner's set_alive changes it, and
 // owner_of never reads it as part of an owner.
 TEST(ParallelMethods, LocksKeepTheAliveBit) {
-  for (const auto mode : {OptimisticSync::Mode::Detect, OptimisticSync::Mode::Burglary}) {
+  auto check = [&]<class Sync>() {
     LockFixture f(2, 2);
     const TetId a = f.ids[0];
     const TetId b = f.ids[1];
     auto word = [&](TetId t) { return f.mesh.tets.lock_word(t).load(); };
     f.mesh.tets.set_alive(a, true);
     ThreadStats stats;
-    OptimisticSync sync(f.mesh, f.table, 1, mode, stats, false);
+    Sync sync(f.mesh, f.table, 1, stats, false);
     ASSERT_TRUE(sync.acquire(a));
     ASSERT_TRUE(sync.acquire(b));
     EXPECT_EQ(LockTable::owner_of(word(a)), 1u);
@@ -807,11 +815,11 @@ TEST(ParallelMethods, LocksKeepTheAliveBit) {
     EXPECT_EQ(word(a), 0u);
     EXPECT_EQ(word(b), engine::TetStore::kAliveBit);
     // Another thread takes the free, live b: its compare-and-swap keeps the bit.
-    OptimisticSync other(f.mesh, f.table, 2, mode, stats, false);
+    Sync other(f.mesh, f.table, 2, stats, false);
     ASSERT_TRUE(other.acquire(b));
     EXPECT_TRUE(f.mesh.tets.is_alive(b));
     EXPECT_EQ(LockTable::owner_of(word(b)), 2u);
-    if (mode == OptimisticSync::Mode::Detect) {
+    if constexpr (std::is_same_v<Sync, DetectSync>) {
       // A logged tetrahedron killed and then rolled back is alive again, its lock free.
       other.before_write(b);
       f.mesh.tets.set_alive(b, false);
@@ -820,7 +828,9 @@ TEST(ParallelMethods, LocksKeepTheAliveBit) {
       other.commit();
     }
     EXPECT_EQ(word(b), engine::TetStore::kAliveBit);
-  }
+  };
+  check.template operator()<DetectSync>();
+  check.template operator()<BurglarySync>();
 }
 
 TEST(ParallelMethods, PreventWaitsWhenHoldingNoLock) {
@@ -830,7 +840,7 @@ TEST(ParallelMethods, PreventWaitsWhenHoldingNoLock) {
   f.table.priority[2].store(5);
   f.own(b, 2);
   ThreadStats stats;
-  OptimisticSync sync(f.mesh, f.table, 1, OptimisticSync::Mode::Prevent, stats, false);
+  PreventSync sync(f.mesh, f.table, 1, stats, false);
   // Holding a, thread 1 must not wait for thread 2 (higher priority): it gives up.
   ASSERT_TRUE(sync.acquire(a));
   EXPECT_FALSE(sync.acquire(b));

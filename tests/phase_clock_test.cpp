@@ -1,13 +1,14 @@
-// The per-insertion phase clock (engine/src/phase_clock.hpp): its ticks, converted at the rate it
-// measured, give the seconds that steady_clock gives for the same interval, and an interval read
-// backwards counts zero. Bounds wide enough for a loaded 2-core machine: this checks the
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
+// The per-insertion phase clock (engine/src/support/phase_clock.hpp): its ticks, converted at the
+// rate it measured, give the seconds that steady_clock gives for the same interval, and an interval
+// read backwards counts zero. Bounds wide enough for a loaded 2-core machine: this checks the
 // conversion (a wrong rate is off by a factor of the clock's frequency in GHz, or more), not speed.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <thread>
 
-#include "phase_clock.hpp"
+#include "support/phase_clock.hpp"
 
 namespace dtlab::test {
 namespace {

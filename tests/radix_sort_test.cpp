@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // The engine's stable radix sort of (key, id) pairs: the order of std::stable_sort by key, on one
 // thread and on several, with keys that share digits (skipped passes), many equal keys (stability)
 // and sizes around the split's minimum.
@@ -8,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "parallel_ranges.hpp"
-#include "radix_sort.hpp"
+#include "support/parallel_ranges.hpp"
+#include "support/radix_sort.hpp"
 
 namespace dtlab::test {
 namespace {

@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // Burglary's repair, tested on its own: Lawson flips (IncrementalDelaunay::relegalize) on a
 // Delaunay mesh into which non-Delaunay faces were injected by forced flips. The repair must find
 // them from the marks (the injected flips' tetrahedra, or DAG nodes above them) and give back the
@@ -11,7 +12,7 @@
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
-#include "incremental_delaunay.hpp"
+#include "insertion/inserter.hpp"
 
 namespace dtlab::test {
 namespace {

@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // Star splaying (issue 12): a vertex's star, the repair of any tetrahedron list, and the local
 // repair of the engine's mesh. The reference is the engine's own exact sequential result, the
 // unique perturbed Delaunay tetrahedralization (cgal_oracle_test compares the repairs with CGAL).
@@ -15,11 +16,11 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
-#include "incremental_delaunay.hpp"
-#include "splay_repair.hpp"
-#include "star_pieces.hpp"
-#include "vertex_star.hpp"
-#include "walked_mesh_stars.hpp"
+#include "insertion/inserter.hpp"
+#include "repair/splay_repair.hpp"
+#include "repair/star_pieces.hpp"
+#include "repair/vertex_star.hpp"
+#include "repair/walked_mesh_stars.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -496,9 +497,9 @@ TEST(SplaySharedMesh, FlipsFirstHandTheFacesTheyLeaveToTheStars) {
         const engine::FlipPass flips = [&](const std::vector<engine::TetId>& at,
                                            std::vector<engine::TetId>& created,
                                            std::vector<Quad>& left) {
-          engine::IncrementalDelaunay<predicates::AdaptiveKernel, engine::NoSync> flipper(
+          engine::LawsonPass<predicates::AdaptiveKernel, engine::NoSync> lawson(
               broken.dt.mesh(), broken.options, flip_stats, no_sync);
-          return flipper.flip_from(at, created, left, max_flips);
+          return lawson.flip_from(at, created, left, max_flips);
         };
         engine::SplayStats stats;
         engine::splay_shared_mesh(broken.dt.mesh(), {}, true, 2, stats, nullptr, &flips);

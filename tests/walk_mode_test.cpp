@@ -1,3 +1,4 @@
+// A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // The walk mode (--location walk): its insertion order (a Hilbert curve inside BRIO rounds), and
 // its result, which must be the same unique tetrahedralization as the DAG mode's for every kernel
 // that is exact, on every generator family, with the dead slots reused.
@@ -15,7 +16,7 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "dtlab/generators/generators.hpp"
-#include "insertion_order.hpp"
+#include "location/insertion_order.hpp"
 
 namespace dtlab::test {
 namespace {

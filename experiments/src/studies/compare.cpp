@@ -4,6 +4,7 @@
 // points, in interleaved rounds, each run in its own process: time, throughput, peak memory.
 #include <algorithm>
 
+#include "dtlab/engine/methods.hpp"
 #include "dtlab/experiments/cgal_engine.hpp"
 #include "studies.hpp"
 
@@ -46,10 +47,12 @@ std::vector<RunSpec> plan(const StudyParams& p) {
               // The lock methods run in walk mode only (the DAG mode is the paper's baseline).
               std::vector<Method> methods;
               if (walk) {
-                methods = p.quick ? std::vector<Method>{Method::OptimisticDetect}
-                                  : std::vector<Method>{
-                                        Method::Pessimistic, Method::OptimisticDetect,
-                                        Method::OptimisticPrevent, Method::Burglary, Method::Batch};
+                // --quick: one of them; else every parallel method of the registry.
+                for (const engine::MethodInfo& info : engine::methods()) {
+                  if (info.parallel && (!p.quick || info.method == Method::OptimisticDetect)) {
+                    methods.push_back(info.method);
+                  }
+                }
               }
               for (const Method method : methods) {
                 RunSpec spec = base;
@@ -57,11 +60,16 @@ std::vector<RunSpec> plan(const StudyParams& p) {
                 spec.options.method = method;
                 spec.options.threads = threads;
                 spec.options.distribution = p.distribution;  // auto: blocks in walk mode
-                spec.variant = std::string("dtlab walk ") + engine::to_string(method);
-                runs.push_back(spec);
-                spec.options.insertion = engine::Insertion::Cavity;
-                spec.variant = std::string("dtlab walk cavity ") + engine::to_string(method);
-                runs.push_back(spec);
+                for (const engine::Insertion insertion :
+                     {engine::Insertion::Flips, engine::Insertion::Cavity}) {
+                  spec.options.insertion = insertion;
+                  if (engine::unsupported(spec.options)) continue;
+                  spec.variant =
+                      std::string(insertion == engine::Insertion::Cavity ? "dtlab walk cavity "
+                                                                         : "dtlab walk ") +
+                      engine::to_string(method);
+                  runs.push_back(spec);
+                }
               }
               if (cgal_parallel_available()) {
                 RunSpec parallel = base;

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "dtlab/engine/methods.hpp"
 #include "studies.hpp"
 
 namespace dtlab::experiments {
@@ -12,24 +13,23 @@ namespace {
 
 using engine::Method;
 
-constexpr Method kParallelMethods[] = {Method::Pessimistic, Method::OptimisticDetect,
-                                       Method::OptimisticPrevent, Method::Burglary, Method::Batch};
-
 std::vector<RunSpec> plan(const StudyParams& p) {
   std::vector<RunSpec> runs;
   for_each_base_run(p, [&](RunSpec base) {
     // A round is one seed: its points (for a generator) and its insertion order.
     base.variant = "sequential";
     runs.push_back(base);
-    for (const Method method : kParallelMethods) {
+    // Every parallel method of the registry that runs this location and insertion.
+    for (const engine::MethodInfo& info : engine::methods()) {
+      RunSpec spec = base;
+      spec.options.method = info.method;
+      if (!info.parallel || engine::unsupported(spec.options)) continue;
+      spec.variant = info.name;
       for (const int threads : p.threads) {
-        // The batch method needs a locating and an inserting thread: at --threads 1 it still
-        // runs two, so a 1-thread row would not be one thread.
-        if (method == Method::Batch && threads < 2) continue;
-        RunSpec spec = base;
-        spec.options.method = method;
+        // A method that needs more threads than asked (batch: a locating and an inserting
+        // thread, so at --threads 1 it still runs two) would not run at this count.
+        if (threads < info.min_threads) continue;
         spec.options.threads = threads;
-        spec.variant = engine::to_string(method);
         runs.push_back(spec);
       }
     }

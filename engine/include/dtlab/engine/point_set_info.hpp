@@ -15,11 +15,11 @@ namespace dtlab::engine {
 using predicates::Point3;
 
 struct PointSetInfo {
+  Point3 min{0, 0, 0};  // the bounding box
+  Point3 max{0, 0, 0};
   std::uint64_t count = 0;
   std::uint64_t distinct = 0;
   std::uint64_t duplicates = 0;  // count - distinct
-  Point3 min{0, 0, 0};
-  Point3 max{0, 0, 0};
   int dimension = -1;  // affine dimension of the distinct points: -1 (empty), 0, 1, 2 or 3
   double min_abs_nonzero = 0.0;  // smallest nonzero |coordinate| (0 if none)
   double max_abs = 0.0;

@@ -1,0 +1,42 @@
+#pragma once
+// The methods a run can use, each registered once (engine/src/methods/registry.cpp) with its
+// name, a one-line summary and what it supports. The CLI's --method choices and help, the
+// experiments' method lists and the checks of a run's options read this table, so a new method
+// is a new file, its Method value and its row (docs/design.md, "What a change touches").
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "dtlab/engine/options.hpp"
+
+namespace dtlab::engine {
+
+struct MethodInfo {
+  Method method;
+  const char* name;     // as the CLI, the stats and the experiments write it
+  const char* summary;  // one line, for --help and the docs
+  bool parallel;        // runs on options.threads threads (false: one thread, no locks)
+  int min_threads;      // threads it runs whatever options.threads says (batch: a locating and an
+                        // inserting thread)
+  bool dag;             // supports --location dag
+  bool walk;            // supports --location walk
+  bool flips;           // supports --insertion flips
+  bool cavity;          // supports --insertion cavity
+  bool post_check;      // has the paper's post-check: --repair=flips and --repair=rebuild
+};
+
+// Every method, in the order of the Method enumeration.
+std::span<const MethodInfo> methods();
+const MethodInfo& method_info(Method method);
+std::optional<Method> method_named(std::string_view name);
+// "sequential | pessimistic | ...": every method's name, for help texts.
+std::string method_names();
+
+// Why the engine cannot run `options` (a message for the user), or nothing: a location or
+// insertion the method does not support, a post-check repair for a method without one, cavity
+// insertion where the location mode keeps a history DAG. triangulate() throws
+// std::invalid_argument with it.
+std::optional<std::string> unsupported(const TriangulateOptions& options);
+
+}  // namespace dtlab::engine

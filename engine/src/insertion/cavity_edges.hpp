@@ -1,0 +1,93 @@
+#pragma once
+// The pairing of a cavity's boundary edges (TetReplacement::replace_cavity): each edge of the
+// cavity's boundary lies on two boundary faces, and the two new tetrahedra on them share the face
+// made of p and that edge. A hash table keyed by the edge's two vertex ids, emptied in O(1) by an
+// epoch, whose common path has no data-dependent branch: whether an edge is met for the first or
+// the second time is as unpredictable as a coin, and a mispredicted branch per edge cost more than
+// the rest of the table.
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "mesh/tet_store.hpp"
+
+namespace dtlab::engine {
+
+class CavityEdges {
+  struct Entry;
+
+ public:
+  // One cavity's pairing: a view of the table, by value, so that its fields stay in registers
+  // while the caller writes the mesh (through references the compiler cannot tell apart from the
+  // table's own members; kept as members, they were reloaded before every probe).
+  class Pass {
+   public:
+    // New face `self` lies on edge xy. Returns the face met on xy before (and marks the edge
+    // paired), or `self` when xy is new. A third face on a paired edge sets third_face().
+    FaceRef pair(VertexId x, VertexId y, FaceRef self) {
+      if (x > y) std::swap(x, y);
+      const std::uint64_t key = (static_cast<std::uint64_t>(x) << 32) | y;
+      std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> shift_);
+      // Past other edges' entries (rare at this load): a predictable branch.
+      while (entries_[i].epoch == epoch_ && entries_[i].key != key) i = (i + 1) & mask_;
+      Entry& e = entries_[i];
+      const bool seen = e.epoch == epoch_;
+      const bool paired = seen && e.ref == kPaired;
+      third_ = third_ || paired;
+      const FaceRef partner = seen && !paired ? e.ref : self;
+      distinct_ += seen ? 0 : 1;
+      e = {key, epoch_, seen ? kPaired : self};
+      return partner;
+    }
+    // Whether some edge lay on a third face (the boundary is no sphere).
+    [[nodiscard]] bool third_face() const { return third_; }
+    // The edges entered in this pass.
+    [[nodiscard]] std::size_t size() const { return distinct_; }
+
+   private:
+    friend class CavityEdges;
+    Pass(Entry* entries, std::size_t mask, int shift, std::uint32_t epoch)
+        : entries_(entries), mask_(mask), shift_(shift), epoch_(epoch) {}
+    Entry* entries_;
+    std::size_t mask_;
+    int shift_;  // log2(table size) top bits
+    std::uint32_t epoch_;
+    std::size_t distinct_ = 0;
+    bool third_ = false;
+  };
+
+  // Empties the table for a cavity with at most `entries` edge entries (3 per boundary face) and
+  // starts its pass. The table in use is the smallest that keeps the load at most 1/4 (each edge
+  // is entered twice: 1/8 in edges), within the memory kept, so one huge cavity does not spread
+  // every later small one over a large table. The pass is valid until the next begin().
+  Pass begin(std::size_t entries) {
+    std::size_t used = kMinimumSize;
+    while (used < 4 * entries) used *= 2;
+    if (entries_.size() < used) entries_.resize(used);
+    used_ = used;
+    if (++epoch_ == 0) {  // wrapped: entries of an old epoch could look current
+      for (Entry& e : entries_) e.epoch = 0;
+      epoch_ = 1;
+    }
+    return Pass(entries_.data(), used - 1, 64 - __builtin_ctzll(used), epoch_);
+  }
+
+  // Entries in use now, and kept allocated (for tests).
+  [[nodiscard]] std::size_t used_capacity() const { return used_; }
+  [[nodiscard]] std::size_t allocated_capacity() const { return entries_.size(); }
+
+ private:
+  static constexpr FaceRef kPaired = 0xFFFFFFFFu;
+  static constexpr std::size_t kMinimumSize = 256;
+  struct Entry {
+    std::uint64_t key = 0;
+    std::uint32_t epoch = 0;
+    FaceRef ref = 0;
+  };
+  std::vector<Entry> entries_;  // the first used_ are the table
+  std::size_t used_ = kMinimumSize;
+  std::uint32_t epoch_ = 0;
+};
+
+}  // namespace dtlab::engine

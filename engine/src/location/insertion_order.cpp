@@ -1,0 +1,135 @@
+#include "location/insertion_order.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "dtlab/common/random.hpp"
+#include "support/parallel_ranges.hpp"
+#include "support/radix_sort.hpp"
+
+namespace dtlab::engine {
+
+std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  common::Random rng(seed);
+  for (std::size_t i = n; i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+  return order;
+}
+
+// Hilbert key by Skilling's method ("Programming the Hilbert curve", 2004): the curve is built
+// from the most significant bit down; at each level the sub-cube's frame is a reflection and an
+// axis exchange of the parent's, and applying those transformations to the lower bits of the
+// coordinates first (the loop over q), then Gray-decoding the bit columns, leaves the "transposed"
+// index, whose bits interleaved axis by axis are the distance along the curve.
+std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, unsigned bits) {
+  // Branch-free: each bit's test is a mask (0 or all ones), since the bits of random points are
+  // as unpredictable as a branch can get (the branches cost more than the rest of the order).
+  std::uint32_t axis[3] = {x, y, z};
+  for (unsigned level = bits - 1; level > 0; --level) {
+    const std::uint32_t lower = (1u << level) - 1;
+    for (std::uint32_t& a : axis) {
+      const std::uint32_t set = 0u - ((a >> level) & 1u);
+      // set: reflect the lower bits of the first axis; clear: exchange them with this axis
+      // (nothing when this axis is the first).
+      const std::uint32_t differ = (axis[0] ^ a) & lower & ~set;
+      axis[0] ^= (lower & set) | differ;
+      a ^= differ;
+    }
+  }
+  axis[1] ^= axis[0];
+  axis[2] ^= axis[1];
+  std::uint32_t flip = 0;
+  for (unsigned level = bits - 1; level > 0; --level) {
+    flip ^= ((1u << level) - 1) & (0u - ((axis[2] >> level) & 1u));
+  }
+  for (std::uint32_t& a : axis) a ^= flip;
+  // Interleave, most significant first, axis 0 before 1 before 2: bit b of axis k lands at
+  // 3 b + 2 - k. spread() moves bit b of a 21-bit value to 3 b by halving steps.
+  auto spread = [](std::uint32_t v) {
+    std::uint64_t s = v & 0x1FFFFFu;
+    s = (s | (s << 32)) & 0x001F00000000FFFFull;
+    s = (s | (s << 16)) & 0x001F0000FF0000FFull;
+    s = (s | (s << 8)) & 0x100F00F00F00F00Full;
+    s = (s | (s << 4)) & 0x10C30C30C30C30C3ull;
+    s = (s | (s << 2)) & 0x1249249249249249ull;
+    return s;
+  };
+  return (spread(axis[0]) << 2) | (spread(axis[1]) << 1) | spread(axis[2]);
+}
+
+namespace {
+
+constexpr unsigned kBits = 21;
+
+// A coordinate's cell on the 2^21 grid over [lo, lo + extent].
+std::uint32_t cell(double c, double lo, double extent) {
+  if (!(extent > 0)) return 0;
+  const double scaled = (c - lo) / extent * static_cast<double>((1u << kBits) - 1);
+  return static_cast<std::uint32_t>(
+      std::clamp(scaled, 0.0, static_cast<double>((1u << kBits) - 1)));
+}
+
+}  // namespace
+
+void brio_hilbert_order(const std::vector<predicates::Point3>& points,
+                        std::vector<std::uint32_t>& ids, int threads) {
+  if (ids.empty()) return;
+  // ids is a random order: every point read misses the cache unless it is asked for ahead.
+  auto prefetch = [&](std::size_t i) {
+    if (i < ids.size()) __builtin_prefetch(&points[ids[i]]);
+  };
+  constexpr std::size_t kAhead = 16;
+  // The bounding box, each thread over its range of ids.
+  const std::size_t parts = static_cast<std::size_t>(std::max(threads, 1));
+  std::vector<std::pair<predicates::Point3, predicates::Point3>> boxes(
+      parts, {points[ids[0]], points[ids[0]]});
+  in_parallel_ranges(ids.size(), threads,
+                     [&](std::size_t begin, std::size_t end, std::size_t part) {
+                       auto [lo, hi] = boxes[part];
+                       for (std::size_t i = begin; i < end; ++i) {
+                         prefetch(i + kAhead);
+                         const predicates::Point3& p = points[ids[i]];
+                         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+                         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+                       }
+                       boxes[part] = {lo, hi};
+                     });
+  predicates::Point3 lo = boxes[0].first;  // not a structured binding: the lambda below uses it
+  predicates::Point3 hi = boxes[0].second;
+  for (const auto& [part_lo, part_hi] : boxes) {
+    lo = {std::min(lo.x, part_lo.x), std::min(lo.y, part_lo.y), std::min(lo.z, part_lo.z)};
+    hi = {std::max(hi.x, part_hi.x), std::max(hi.y, part_hi.y), std::max(hi.z, part_hi.z)};
+  }
+  // One scale for the three axes keeps the cells cubes (a flat input stays a flat curve). The
+  // halving keeps the extent finite for coordinates near DBL_MAX.
+  const double extent =
+      2 * std::max({hi.x / 2 - lo.x / 2, hi.y / 2 - lo.y / 2, hi.z / 2 - lo.z / 2});
+  std::vector<KeyedId> keyed(ids.size());
+  in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      prefetch(i + kAhead);
+      const predicates::Point3& p = points[ids[i]];
+      keyed[i] = {hilbert_key(cell(p.x, lo.x, extent), cell(p.y, lo.y, extent),
+                              cell(p.z, lo.z, extent), kBits),
+                  ids[i]};
+    }
+  });
+  // Rounds from the end: [n/2, n), [n/4, n/2), ... and a first round [0, end) of at most
+  // kFirstRound points. Equal keys keep the random order (ties are broken by position: the sort
+  // is stable, on any number of threads).
+  std::vector<KeyedId> scratch(keyed.size());
+  std::size_t end = keyed.size();
+  while (end > 0) {
+    const std::size_t begin = end <= kFirstRound ? 0 : end / 2;
+    stable_sort_by_key(keyed.data() + begin, scratch.data() + begin, end - begin, threads);
+    end = begin;
+  }
+  in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) ids[i] = keyed[i].second;
+  });
+}
+
+}  // namespace dtlab::engine

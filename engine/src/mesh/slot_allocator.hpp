@@ -1,0 +1,106 @@
+#pragma once
+// Where an inserting thread's new tetrahedra get their slots, and where its dead ones go.
+// DAG mode: fresh slots only, never reused (the dead tetrahedra are the DAG). Walk mode: the
+// slots an insertion killed are reused once it has ended (its legalization stack may name them
+// until then); on a shared mesh only after the epochs say no other thread's operation can reach
+// them (slot_reclaimer.hpp). Fresh slots come in runs of kSlotRun from the store: one atomic step
+// per run, and one thread's records share cache lines only with its own.
+#include <cassert>
+#include <cstddef>
+
+#include "mesh/slot_reclaimer.hpp"
+#include "mesh/tet_id_list.hpp"
+#include "mesh/tet_store.hpp"
+
+namespace dtlab::engine {
+
+class SlotAllocator {
+ public:
+  // recycle: reuse dead slots; reclaimer: a shared mesh's epochs (nullptr for the owning engine,
+  // and for an engine that keeps every slot).
+  SlotAllocator(TetStore& store, bool recycle, SlotReclaimer* reclaimer)
+      : store_(store), recycle_(recycle), reclaimer_(reclaimer) {}
+
+  // An operation reads the mesh (a location, an insertion attempt): the epochs protect what it
+  // reaches until it ends. Entering twice is one operation (the pessimistic method's lock-free
+  // walk and its insertion).
+  void begin_operation() {
+    if (reclaimer_ != nullptr) reclaimer_->enter();
+  }
+  void end_operation() {
+    if (reclaimer_ != nullptr) reclaimer_->leave();
+  }
+  void begin_insertion() {
+    begin_operation();
+    attempt_created_.clear();
+  }
+  // undone: the attempt was rolled back (the tetrahedra it killed are alive again, the ones it
+  // created are dead); else the tetrahedra it killed are dead for good.
+  void end_insertion(bool undone) {
+    if (recycle_) {
+      for (const TetId t : undone ? attempt_created_ : retired_) release(t);
+      retired_.clear();
+    }
+    if (reclaimer_ != nullptr) {
+      reclaimer_->leave();
+      reclaimer_->collect(free_slots_);
+    }
+  }
+
+  // A free slot: a reused one, else the next of this thread's run of fresh slots.
+  // Always inlined (out of line it was a call per new tetrahedron, and GCC's choice changed
+  // with the caller's size); a new run of fresh slots, once in 64, is the call.
+  [[gnu::always_inline]] TetId allocate() {
+    TetId id = kNoTet;
+    if (!free_slots_.empty()) {
+      id = free_slots_.pop_back();
+    } else {
+      if (run_next_ == run_end_) [[unlikely]]
+        next_run();
+      id = run_next_++;
+    }
+    if (reclaimer_ != nullptr) attempt_created_.push_back(id);
+    return id;
+  }
+  // t, the last slot this attempt allocated, was never published (nothing references it, and
+  // it is dead): free again at once, also on a shared mesh.
+  void give_back(TetId t) {
+    if (reclaimer_ != nullptr) {
+      assert(!attempt_created_.empty() && attempt_created_.back() == t);
+      (void)attempt_created_.pop_back();
+    }
+    free_slots_.push_back(t);
+  }
+  // t died in the current insertion (walk mode). Always inlined, like allocate.
+  [[gnu::always_inline]] void retire(TetId t) { retired_.push_back(t); }
+
+  // 64 slots (of 40 or 56 bytes: 40 or 56 cache lines): a run spans whole cache lines, and what
+  // a run leaves unused at the end (dead, never alive) is at most 63 slots per thread.
+  static constexpr std::size_t kSlotRun = 64;
+
+ private:
+  [[gnu::noinline]] void next_run() {
+    std::size_t count = 0;
+    run_next_ = store_.allocate_run(kSlotRun, count);
+    run_end_ = run_next_ + static_cast<TetId>(count);
+  }
+  // A dead slot: free at once for the owning engine, after the epochs on a shared mesh.
+  void release(TetId t) {
+    if (reclaimer_ != nullptr) {
+      reclaimer_->retire(t);
+    } else {
+      free_slots_.push_back(t);
+    }
+  }
+
+  TetStore& store_;
+  bool recycle_;
+  SlotReclaimer* reclaimer_;
+  TetIdList free_slots_;
+  TetIdList retired_;          // killed by the current insertion
+  TetIdList attempt_created_;  // taken by the current attempt (reclaimer only)
+  TetId run_next_ = 0;         // this thread's run of fresh slots: [run_next_, run_end_)
+  TetId run_end_ = 0;
+};
+
+}  // namespace dtlab::engine

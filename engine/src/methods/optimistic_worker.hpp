@@ -1,0 +1,69 @@
+#pragma once
+// The inserting threads of the optimistic methods (optimistic-detect, optimistic-prevent,
+// burglary): each inserts its share with its own lock policy Sync; a point given up on a lock
+// conflict is retried after the rest, once the thread has backed off, and abandoned after too
+// many tries.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <thread>
+
+#include "methods/kernel_dispatch.hpp"
+#include "methods/parallel_run.hpp"
+
+namespace dtlab::engine {
+
+// Runs run.threads threads of policy Sync; `done(i, sync)` sees thread i's policy after its last
+// insertion (burglary takes its marks).
+template <class Sync, class K, class Done>
+void insert_optimistically(ParallelRun<K>& run, Done&& done) {
+  run.split_among(run.threads);
+  run.on_threads([&](int i) {
+    ThreadStats& counters = run.stats.threads[static_cast<std::size_t>(i)];
+    WorkSource work = run.work_for(i);
+    Sync sync(run.mesh, run.table, static_cast<std::uint32_t>(i + 1), counters, run.options.stress);
+    ThreadInserter<K, Sync> thread(run, i, run.thread_stats(i), sync);
+    auto& dt = thread.dt;
+    using Outcome = typename IncrementalDelaunay<K, Sync>::Outcome;
+    int consecutive_give_ups = 0;
+    while (const auto v = work.next()) {
+      if (run.stopping()) break;
+      const Outcome outcome = dt.insert(*v);
+      count_outcome(outcome, counters);
+      if (outcome == Outcome::GaveUp || outcome == Outcome::Unlocated) {
+        const int limit = outcome == Outcome::Unlocated ? WorkSource::kMaxLocationAttempts
+                                                        : WorkSource::kMaxLockAttempts;
+        const bool abandoned = !work.retry_later(*v, limit);
+        if (abandoned) ++counters.abandoned;
+        // Progress for the watchdog: an abandonment, and a failed location too, since a point
+        // has at most kMaxLocationAttempts of them (bounded work: the last rounds over an inexact
+        // kernel's hopeless points, slow under a sanitizer, are no stall). Not a lock conflict:
+        // threads can give up against each other forever.
+        if (abandoned || outcome == Outcome::Unlocated) run.progressed();
+        // Back off before the next attempt: the thread that waited for our locks must get them
+        // before we take them again, or the two can give up against each other forever; and a
+        // rollback that raced our descent must finish before we descend again.
+        const int shift = std::min(consecutive_give_ups++, 10);
+        std::this_thread::sleep_for(std::chrono::microseconds(1 << shift));
+      } else {
+        consecutive_give_ups = 0;
+        run.progressed();
+      }
+    }
+    run.finish_thread(i, dt);
+    done(i, sync);
+  });
+}
+
+// An optimistic method's whole run with policy Sync, for the methods with nothing after their
+// threads but the output (optimistic-detect, optimistic-prevent).
+template <class Sync>
+std::vector<Tetrahedron> run_optimistic(const MethodInput& input, TriangulationStats& stats) {
+  return with_kernel(input.options, [&]<class K>() {
+    ParallelRun<K> run(input, stats, std::max(1, input.options.threads));
+    insert_optimistically<Sync>(run, [](int, const Sync&) {});
+    return run.output(run.finish());
+  });
+}
+
+}  // namespace dtlab::engine

@@ -1,0 +1,59 @@
+#pragma once
+// The parallel runs' guard against a hang (every method but the sequential one).
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+namespace dtlab::engine {
+
+// Stops a run in which no insertion finished for too long: a lost wake-up or an undetected
+// deadlock becomes a reported failure, not a hang.
+class Watchdog {
+ public:
+  Watchdog(double seconds, std::atomic<std::uint64_t>& progress, std::atomic<bool>& stop)
+      : seconds_(seconds), progress_(progress), stop_(stop), thread_([this] { watch(); }) {}
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+  ~Watchdog() {
+    {
+      std::lock_guard<std::mutex> guard(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  [[nodiscard]] bool fired() const { return fired_.load(); }
+
+ private:
+  void watch() {
+    std::uint64_t last = progress_.load();
+    auto last_change = std::chrono::steady_clock::now();
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!done_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(100));
+      const std::uint64_t now = progress_.load();
+      if (now != last) {
+        last = now;
+        last_change = std::chrono::steady_clock::now();
+      } else if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_change)
+                     .count() > seconds_) {
+        fired_ = true;
+        stop_ = true;
+        return;
+      }
+    }
+  }
+  double seconds_;
+  std::atomic<std::uint64_t>& progress_;
+  std::atomic<bool>& stop_;
+  std::atomic<bool> fired_{false};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+}  // namespace dtlab::engine
