@@ -3,7 +3,11 @@
 # bounded time, starting from its seed corpus, two at a time. New inputs go to a scratch copy of
 # the corpus (build/fuzz/corpus/TARGET), crashes to build/fuzz/artifacts/TARGET/.
 # Usage: scripts/fuzz.sh [SECONDS-PER-FUZZER (default 60)] [TARGET...]
-# Ends with "fuzz: N passed, N failed" (a fuzzer passes when it finds nothing in its time).
+# Ends with "fuzz: N passed, N failed". A fuzzer passes when it finds nothing in its time and has
+# fuzzed: at least DTLAB_FUZZ_MIN_EXECS (default 100) executions after replaying its corpus (a run
+# that only replays its corpus and stops is not a fuzz run). Each line says how many coverage
+# counters the harness loaded (its own and the libraries it tests: cmake/Fuzzing.cmake), the
+# executions before and after the corpus replay, and the coverage reached.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -24,19 +28,31 @@ run_one() {  # run_one TARGET: exit status of the fuzzer, log in build/fuzz/TARG
     "$corpus" >"build/fuzz/$t.log" 2>&1
 }
 
+min_execs="${DTLAB_FUZZ_MIN_EXECS:-100}"
 passed=0
 failed=0
 pids=()
 names=()
 report() {  # report INDEX
-  local t="${names[$1]}"
-  if wait "${pids[$1]}"; then
-    passed=$((passed + 1))
-    echo "fuzz_$t: nothing found in ${seconds} s ($(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "build/fuzz/$t.log" | grep -Eo '[0-9]+$' || echo '?') runs)"
-  else
+  local t="${names[$1]}" log="build/fuzz/${names[$1]}.log"
+  local counters inited total fuzzed cov code=0
+  wait "${pids[$1]}" || code=$?
+  counters=$(grep -Eo 'Loaded [0-9]+ modules +\([0-9]+ inline 8-bit counters\)' "$log" |
+    grep -Eo '\([0-9]+' | tr -d '(' | head -n1 || true)
+  inited=$(grep -E '^#[0-9]+[[:space:]]+INITED' "$log" | grep -Eo '^#[0-9]+' | tr -d '#' | head -n1 || true)
+  total=$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -Eo '[0-9]+$' || true)
+  cov=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n1 | grep -Eo 'cov: [0-9]+ ft: [0-9]+' || true)
+  fuzzed=$(( ${total:-0} - ${inited:-0} ))
+  if [ "$code" -ne 0 ]; then
     failed=$((failed + 1))
-    echo "fuzz_$t: FAILED; log build/fuzz/$t.log, inputs in build/fuzz/artifacts/$t/"
-    tail -n 30 "build/fuzz/$t.log"
+    echo "fuzz_$t: FAILED; log $log, inputs in build/fuzz/artifacts/$t/"
+    tail -n 30 "$log"
+  elif [ -z "$total" ] || [ -z "$inited" ] || [ "$fuzzed" -lt "$min_execs" ]; then
+    failed=$((failed + 1))
+    echo "fuzz_$t: FAILED: ${fuzzed} executions after the corpus replay (${inited:-?} in it), fewer than ${min_execs}: give it more time (DTLAB_FUZZ_SECONDS)"
+  else
+    passed=$((passed + 1))
+    echo "fuzz_$t: nothing found in ${seconds} s: ${counters:-?} counters, ${inited} executions replaying the corpus, ${fuzzed} after, ${cov:-cov: ?}"
   fi
 }
 for t in "${targets[@]}"; do

@@ -40,6 +40,10 @@ for t in "${targets[@]}"; do
   counters=$(grep -Eo 'Loaded [0-9]+ modules +\([0-9]+ inline 8-bit counters\)' "$log" | grep -Eo '\([0-9]+' | tr -d '(' | head -n1)
   execs=$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -Eo '[0-9]+$' || echo '?')
   last=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n1 | grep -Eo 'cov: [0-9]+ ft: [0-9]+' || echo 'cov: ? ft: ?')
-  echo "$t: exit $code, counters ${counters:-?}, $execs executions in $seconds s, $last, corpus $(find "$corpus" -type f | wc -l) files, crashes $(find "$artifacts" -type f | wc -l)" | tee -a "$out/summary.txt"
+  # crash-, leak-, timeout- and oom- inputs are failures; slow-unit- ones (over 10 s) are only told.
+  failures=$(find "$artifacts" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
+  slow=$(find "$artifacts" -type f -name 'slow-unit-*' | wc -l)
+  [ "$failures" -eq 0 ] || status=1
+  echo "$t: exit $code, counters ${counters:-?}, $execs executions in $seconds s, $last, corpus $(find "$corpus" -type f | wc -l) files, failing inputs $failures, slow inputs $slow" | tee -a "$out/summary.txt"
 done
 exit "$status"
