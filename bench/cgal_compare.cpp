@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/experiments/cgal_engine.hpp"
 #include "dtlab/generators/generators.hpp"
@@ -188,15 +189,11 @@ int compare(int argc, char** argv) {
     std::stringstream list(methods);
     std::string name;
     while (std::getline(list, name, ',')) {
-      Method method = Method::OptimisticDetect;
-      bool known = false;
-      for (const Method m : {Method::Pessimistic, Method::OptimisticDetect,
-                             Method::OptimisticPrevent, Method::Burglary, Method::Batch}) {
-        if (name == dtlab::engine::to_string(m)) {
-          method = m;
-          known = true;
-        }
-      }
+      // Any parallel method of the registry that runs in walk mode.
+      const auto named = dtlab::engine::method_named(name);
+      const bool known = named.has_value() && dtlab::engine::method_info(*named).parallel &&
+                         dtlab::engine::method_info(*named).walk;
+      const Method method = named.value_or(Method::OptimisticDetect);
       if (!known) {
         std::fprintf(stderr, "cgal_compare: unknown method %s\n", name.c_str());
         return 2;

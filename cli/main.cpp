@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
                   "dag, as in the paper; blocks with --location walk, so that threads work apart)")
       ->transform(CLI::CheckedTransformer(distributions, CLI::ignore_case));
   tri->add_flag("--stress", targs.options.stress, "random short delays while locks are held");
+  tri->add_option("--points-per-part", targs.options.points_per_part,
+                  "partitioned: a pass uses one part (thread) per this many points, at most "
+                  "--threads (default 2048; smaller passes run on one thread)")
+      ->check(CLI::Range(1u, 1u << 30));
   std::string repair = "none";
   tri->add_flag("--repair{splay}", repair,
                 "repair the mesh after the run by star splaying, exact, from every non-Delaunay "

@@ -4,11 +4,14 @@
 // First byte, config = byte % 252, a mixed-radix number (every one of the 252 configurations is
 // reachable, none twice within 0..251):
 //   config = method + 7 * ((threads - 2) + 3 * (distribution + 2 * (kernel + 3 * splay)))
-//   method:       0 pessimistic, 1 optimistic-detect, 2 optimistic-prevent, 3 burglary,
+//   method:       0 pessimistic (static distribution) or partitioned (dynamic: see below),
+//                 1 optimistic-detect, 2 optimistic-prevent, 3 burglary,
 //                 4 burglary --repair (star splaying), 5 burglary --repair=rebuild (the paper's
 //                 flips, then the reported rebuild), 6 batch
 //   threads:      2, 3, 4
-//   distribution: 0 static, 1 dynamic
+//   distribution: 0 static, 1 dynamic (method 0: the partitioned method, which has none; walk
+//                 mode, cavities for an odd number of points, flips for an even one, 8 points
+//                 a part)
 //   kernel:       0 adaptive, 1 filtered, 2 fast
 //   splay:        1: --repair (star splaying) for methods 0-3 and 6
 // The rest is a point set as for the triangulate harness (fuzz_input.hpp), at most 300 points.
@@ -82,6 +85,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.location =
       points.size() % 2 == 1 ? dtlab::engine::Location::Walk : dtlab::engine::Location::Dag;
   if (points.size() % 4 == 3) options.insertion = dtlab::engine::Insertion::Cavity;
+  if (method == 0 && distribution != 0) {
+    // The dynamic distribution's pessimistic slot runs the partitioned method (which has no
+    // distribution): walk mode only, cavities for odd sizes, parts of 8 points so that these
+    // small inputs are cut into arcs and insertions cross the cuts.
+    options.method = Method::Partitioned;
+    options.location = dtlab::engine::Location::Walk;
+    options.insertion =
+        points.size() % 2 == 1 ? dtlab::engine::Insertion::Cavity : dtlab::engine::Insertion::Flips;
+    options.points_per_part = 8;
+  }
   if (options.kernel == KernelKind::Fast) {
     // Small integers keep the fast kernel's arithmetic exact; a twelfth of them (rounded, as a
     // grid with spacing 1/12 on [0, 1] is) is nearly degenerate and inexact, where it fails.

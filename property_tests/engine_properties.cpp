@@ -88,6 +88,15 @@ const std::vector<Configuration>& configurations() {
     }
     v.push_back({KernelKind::Fast, Method::Sequential, 1, engine::Repair::None, walk, cavity});
     v.push_back({KernelKind::Fast, Method::Sequential, 1, engine::Repair::Splay, walk, cavity});
+    // The partitioned method (walk mode only): both insertions and threads, every other exact
+    // kernel once, the fast kernel repaired.
+    constexpr auto flips = engine::Insertion::Flips;
+    constexpr auto none = engine::Repair::None;
+    v.push_back({KernelKind::Adaptive, Method::Partitioned, 2, none, walk, flips});
+    v.push_back({KernelKind::Adaptive, Method::Partitioned, 4, none, walk, cavity});
+    v.push_back({KernelKind::Filtered, Method::Partitioned, 2, none, walk, cavity});
+    v.push_back({KernelKind::Exact, Method::Partitioned, 2, none, walk, flips});
+    v.push_back({KernelKind::Fast, Method::Partitioned, 2, engine::Repair::Splay, walk, cavity});
     return v;
   }();
   return all;
@@ -130,6 +139,8 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   options.repair = config.repair;
   options.location = config.location;
   options.insertion = config.insertion;
+  // The partitioned method: parts of 8 points, so that these small sets are cut into parts.
+  options.points_per_part = 8;
   if (!tetrahedralizable) {
     RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
     return;

@@ -75,7 +75,8 @@ TEST(CgalReference, DimensionAndDuplicates) {
 // seedless families (grid, lattice) run once per size. Cavity insertion runs with every cavity
 // checked (check_cavities): no cavity may fail to be a star around its point with this kernel.
 void every_family_against_cgal(engine::Location location,
-                               engine::Insertion insertion = engine::Insertion::Flips) {
+                               engine::Insertion insertion = engine::Insertion::Flips,
+                               engine::Method method = engine::Method::Sequential) {
   int compared = 0;
   std::vector<std::string> refused;
   for (const std::string& family : generators::families()) {
@@ -90,6 +91,11 @@ void every_family_against_cgal(engine::Location location,
         options.location = location;
         options.insertion = insertion;
         options.check_cavities = true;
+        options.method = method;
+        if (method != engine::Method::Sequential) {
+          options.threads = 2;
+          options.points_per_part = 32;  // partitioned: these sets cut into parts
+        }
         const std::string what = family + ":" + std::to_string(n) + " seed " + std::to_string(seed);
         if (cgal_dimension(pts) < 3) {
           EXPECT_THROW(engine::triangulate(pts, options), engine::TriangulationError) << what;
@@ -129,6 +135,14 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedraInWalkMode) {
 // Bowyer-Watson insertion (--insertion cavity) on the same sets.
 TEST(CgalOracle, EveryFamilyIdenticalTetrahedraByCavities) {
   every_family_against_cgal(engine::Location::Walk, engine::Insertion::Cavity);
+}
+
+// The partitioned method on 2 threads, parts of 32 points, both insertions, the same sets.
+TEST(CgalOracle, EveryFamilyIdenticalTetrahedraPartitioned) {
+  every_family_against_cgal(engine::Location::Walk, engine::Insertion::Flips,
+                            engine::Method::Partitioned);
+  every_family_against_cgal(engine::Location::Walk, engine::Insertion::Cavity,
+                            engine::Method::Partitioned);
 }
 
 // Star splaying (issue 12) against CGAL after each of its three uses, on every family with a

@@ -15,6 +15,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/repair.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
@@ -22,10 +23,12 @@
 #include "dtlab/predicates/kernels.hpp"
 #include "insertion/inserter.hpp"
 #include "methods/burglary.hpp"
+#include "methods/curve_partition.hpp"
 #include "methods/distribution.hpp"
 #include "methods/lock_table.hpp"
 #include "methods/optimistic_detect.hpp"
 #include "methods/optimistic_prevent.hpp"
+#include "methods/partition_sync.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -95,7 +98,7 @@ TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
     const auto points = generators::generate(family, 800, 8).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
-                           Method::Batch, Method::Burglary}) {
+                           Method::Batch, Method::Burglary, Method::Partitioned}) {
       const std::vector<engine::Repair> repairs =
           m == Method::Burglary
               ? std::vector<engine::Repair>{engine::Repair::Splay, engine::Repair::FlipsThenSplay}
@@ -108,6 +111,7 @@ TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
           options.threads = threads;
           options.stress = true;
           options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
+          options.points_per_part = 16;  // partitioned: these small inputs cut into parts
           options.repair = repair;
           const auto result = engine::triangulate(points, options);
           const std::string what = family + " " + engine::to_string(m) + " " +
@@ -248,6 +252,7 @@ TEST(ParallelMethods, CavityInsertionEveryMethodGivesTheUniqueMesh) {
     options.stress = true;
     options.seed = seed;
     options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
+    options.points_per_part = 16;  // partitioned: these small inputs cut into parts
     const auto result = engine::triangulate(points, options);
     const std::string what = family + " " + engine::to_string(m) + " " + std::to_string(threads) +
                              " seed " + std::to_string(seed);
@@ -272,7 +277,7 @@ TEST(ParallelMethods, CavityInsertionEveryMethodGivesTheUniqueMesh) {
     const auto points = generators::generate(family, 800, 8).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
     for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
-                           Method::Batch, Method::Burglary}) {
+                           Method::Batch, Method::Burglary, Method::Partitioned}) {
       for (const int threads : {2, 4}) run(family, points, expected, m, threads, 1);
     }
   }
@@ -706,6 +711,121 @@ struct LockFixture {
 
 // A chain of registered waits is a deadlock only while every thread on it still waits and every
 // lock waited for is still held by the next thread.
+// The partitioned method's cuts: at the quantiles (j + phase) / parts of the keys, the last part
+// wrapping from the curve's end to its start; one part takes every key.
+TEST(ParallelMethods, CurvePartitionCutsAtQuantilesAndWraps) {
+  std::vector<std::uint64_t> keys(100);
+  for (std::uint64_t i = 0; i < keys.size(); ++i) keys[i] = 10 * i;
+  engine::CurvePartition partition;
+  partition.cut(keys, 4, 0.0);
+  EXPECT_EQ(std::vector<std::uint64_t>(partition.cuts().begin(), partition.cuts().end()),
+            (std::vector<std::uint64_t>{0, 250, 500, 750}));
+  EXPECT_EQ(partition.part_of(0), 0);
+  EXPECT_EQ(partition.part_of(249), 0);
+  EXPECT_EQ(partition.part_of(250), 1);
+  EXPECT_EQ(partition.part_of(990), 3);
+  partition.cut(keys, 4, 0.5);  // cuts at positions 12, 37, 62, 87
+  EXPECT_EQ(std::vector<std::uint64_t>(partition.cuts().begin(), partition.cuts().end()),
+            (std::vector<std::uint64_t>{120, 370, 620, 870}));
+  EXPECT_EQ(partition.part_of(50), 3);  // below the first cut: the last part's wrap
+  EXPECT_EQ(partition.part_of(120), 0);
+  EXPECT_EQ(partition.part_of(900), 3);
+  // Each part gets a quarter of the keys.
+  std::vector<int> count(4, 0);
+  for (const std::uint64_t k : keys) ++count[static_cast<std::size_t>(partition.part_of(k))];
+  EXPECT_EQ(count, (std::vector<int>{25, 25, 25, 25}));
+  partition.cut(keys, 1, 0.3);
+  EXPECT_EQ(partition.parts(), 1);
+  EXPECT_EQ(partition.part_of(990), 0);
+}
+
+// A thread of the partitioned method may change a tetrahedron only when every finite vertex is
+// in its part; the vertex at infinity is in every part; a pass of one part owns everything.
+TEST(ParallelMethods, PartitionSyncOwnsOnlyTetrahedraOfItsPart) {
+  const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  engine::SharedMesh mesh(points);
+  mesh.tets.keep_children(false);
+  mesh.tets.keep_lock_words(false);
+  mesh.tets.keep_alive_flags(true);
+  const TetId t = mesh.tets.allocate();
+  mesh.tets[t].vertex = {0, 1, 2, 3};
+  std::vector<std::uint8_t> part_of{0, 0, 0, 1};
+  engine::PartitionSync sync(mesh, part_of);
+  sync.set_part(0, false);
+  EXPECT_FALSE(sync.acquire(t));
+  sync.set_part(1, false);
+  EXPECT_FALSE(sync.acquire(t));
+  sync.set_part(0, true);
+  EXPECT_TRUE(sync.acquire(t));
+  part_of[3] = 0;
+  sync.set_part(0, false);
+  EXPECT_TRUE(sync.acquire(t));
+  part_of[3] = 1;
+  mesh.tets[t].vertex[3] = engine::kInfiniteVertex;
+  EXPECT_TRUE(sync.acquire(t));
+  sync.set_part(1, false);
+  EXPECT_FALSE(sync.acquire(t));
+}
+
+// The partitioned method on small inputs cut into parts of 16 points, so that passes run on
+// several threads and insertions reach other parts: the unique mesh with both insertions and the
+// exact kernels, nothing abandoned, every postponed point inserted by a later pass (the last pass
+// postpones none), and the postponement taken with both insertions (for the flips that is an
+// undo when the refusal comes after a write).
+TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
+  std::uint64_t postponed[2] = {0, 0};
+  std::uint64_t parallel_passes = 0;
+  for (const std::string family : {"uniform", "grid", "sphere", "cospherical", "duplicates"}) {
+    const auto points = generators::generate(family, 700, 4).points;
+    const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
+    for (const auto kernel :
+         {engine::KernelKind::Adaptive, engine::KernelKind::Filtered, engine::KernelKind::Exact}) {
+      if (kernel == engine::KernelKind::Exact && family != "uniform") continue;  // GMP: slow
+      for (const auto insertion : {engine::Insertion::Flips, engine::Insertion::Cavity}) {
+        for (const int threads : {2, 4}) {
+          engine::TriangulateOptions options;
+          options.location = engine::Location::Walk;
+          options.insertion = insertion;
+          options.kernel = kernel;
+          options.method = Method::Partitioned;
+          options.threads = threads;
+          options.points_per_part = 16;
+          const auto result = engine::triangulate(points, options);
+          const std::string what = family + " " + engine::to_string(insertion) + " " +
+                                   engine::to_string(kernel) + " " + std::to_string(threads);
+          EXPECT_EQ(result.stats.abandoned_insertions, 0u) << what;
+          EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << what;
+          const auto& passes = result.stats.partition_passes;
+          ASSERT_FALSE(passes.empty()) << what;
+          EXPECT_EQ(passes.back().postponed, 0u) << what;
+          for (const engine::PartitionPass& pass : passes) {
+            EXPECT_LE(pass.parts, static_cast<std::uint64_t>(threads)) << what;
+            EXPECT_LE(pass.postponed, pass.points) << what;
+            if (pass.parts > 1) ++parallel_passes;
+            postponed[insertion == engine::Insertion::Cavity ? 1 : 0] += pass.postponed;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(parallel_passes, 0u);
+  EXPECT_GT(postponed[0], 0u);
+  EXPECT_GT(postponed[1], 0u);
+}
+
+// The partitioned method needs the walk mode, and says why.
+TEST(ParallelMethods, PartitionedRefusesTheDagModeWithTheReason) {
+  engine::TriangulateOptions options;
+  options.method = Method::Partitioned;
+  options.location = engine::Location::Dag;
+  const auto why = engine::unsupported(options);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("needs --location walk"), std::string::npos) << *why;
+  EXPECT_NE(why->find("random order"), std::string::npos) << *why;
+  const auto points = generators::generate("uniform", 100, 1).points;
+  EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument);
+}
+
 TEST(ParallelMethods, FindCycleConfirmsOnlyRealCycles) {
   LockFixture f(3, 3);
   const TetId a = f.ids[0];

@@ -8,6 +8,7 @@ the same oriented tetrahedra give the same line. Burglary runs with --repair (st
 without it its mesh may depend on the interleaving. A run that is refused prints its exit code.
 
 Usage: tools/mesh_fingerprints.py DTLAB-BINARY OUT.txt [--size N] [--threads T]
+         [--predicates fast --methods sequential]
 Compare two binaries: run it for each, then `diff a.txt b.txt` (no output: identical meshes).
 """
 import argparse
@@ -38,11 +39,10 @@ def canonical(tet):
 def fingerprint(ele_path):
     tets = []
     with open(ele_path) as f:
-        header = f.readline().split()
-        count = int(header[0])
-        for _ in range(count):
-            fields = f.readline().split()
-            tets.append(canonical(tuple(int(x) for x in fields[1:5])))
+        rows = [line.split() for line in f if line.strip() and not line.startswith("#")]
+    count = int(rows[0][0])
+    for fields in rows[1:count + 1]:
+        tets.append(canonical(tuple(int(x) for x in fields[1:5])))
     tets.sort()
     digest = hashlib.sha256(repr(tets).encode()).hexdigest()[:16]
     return digest, len(tets)
@@ -54,17 +54,21 @@ def main():
     parser.add_argument("out")
     parser.add_argument("--size", type=int, default=1000)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--predicates", default="adaptive")
+    parser.add_argument("--methods", default=",".join(METHODS),
+                        help="comma-separated (the fast kernel is deterministic sequentially only)")
     args = parser.parse_args()
     lines = []
     with tempfile.TemporaryDirectory() as tmp:
         ele = os.path.join(tmp, "mesh.ele")
         for family in FAMILIES:
-            for method in METHODS:
+            for method in args.methods.split(","):
                 for location, insertion in MODES:
                     threads = 1 if method == "sequential" else args.threads
                     cmd = [args.dtlab, "triangulate", f"{family}:{args.size}", "--seed", "1",
                            "--method", method, "--threads", str(threads), "--location",
-                           location, "--insertion", insertion, "-o", ele]
+                           location, "--insertion", insertion, "--predicates", args.predicates,
+                           "-o", ele]
                     if method == "burglary":
                         cmd.append("--repair")
                     if os.path.exists(ele):

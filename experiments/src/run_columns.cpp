@@ -46,6 +46,7 @@ nlohmann::ordered_json full_stats_template() {
   stats.post_check.repaired = true;
   stats.splay.done = true;
   stats.hull_tetrahedra_lost = 0;
+  stats.partition_passes.resize(1);
   engine::TriangulateOptions options;
   options.method = engine::Method::Batch;
   return nlohmann::ordered_json::parse(engine::stats_json(stats, options, "batch", 2));

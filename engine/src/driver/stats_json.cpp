@@ -41,6 +41,27 @@ void put_threads(Json& j, const TriangulationStats& s, const TriangulateOptions&
   j["per_thread"] = per_thread;
 }
 
+// The partitioned method's passes, one object each, and their count.
+void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
+                          const TriangulateOptions& options) {
+  Json list = Json::array();
+  std::uint64_t postponed = 0;
+  for (const PartitionPass& p : passes) {
+    Json one;
+    put(one, {{"points", p.points},
+              {"parts", p.parts},
+              {"postponed", p.postponed},
+              {"seconds", p.seconds},
+              {"imbalance", p.imbalance}});
+    list.push_back(one);
+    postponed += p.postponed;
+  }
+  put(j, {{"partition_rounds", passes.size()},
+          {"partition_postponed", postponed},
+          {"points_per_part", options.points_per_part}});
+  j["partition_passes"] = list;
+}
+
 Json post_check_json(const PostCheck& c, const TriangulateOptions& options) {
   Json pc;
   put(pc, {{"non_delaunay_faces", c.non_delaunay_faces},
@@ -137,6 +158,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
           {"bytes_per_point", s.points > 0 ? s.peak_rss_bytes / s.points : 0},
           {"scale_exponent", s.scale_exponent}});
   if (!s.threads.empty()) put_threads(j, s, options);
+  if (!s.partition_passes.empty()) put_partition_passes(j, s.partition_passes, options);
   if (s.post_check.done) j["post_check"] = post_check_json(s.post_check, options);
   if (s.splay.done) j["splay"] = splay_json(s.splay);
   put(j, {{"repair", to_string(options.repair)},

@@ -41,8 +41,8 @@ class EpochTable {
     ++count_;
     return {&entries_[i].value, true};
   }
-  // key must not be in the table.
-  void insert(Key key, Value value) {
+  // key must not be in the table. Out of line: a search's first entry, once per search.
+  [[gnu::noinline]] void insert(Key key, Value value) {
     if (2 * (count_ + 1) > used_) grow();
     place(key, value);
     ++count_;
@@ -80,8 +80,9 @@ class EpochTable {
     entries_[i] = {key, epoch_, value};
   }
   // Twice the entries in use: the current ones move out, a new epoch empties the table, and
-  // they go back in at their new places.
-  void grow() {
+  // they go back in at their new places. Out of line: rare, and inlined into the cavity search
+  // (GCC's choice in some translation units) it crowded the hot loop's registers.
+  [[gnu::noinline]] void grow() {
     moving_.clear();
     for (std::size_t i = 0; i < used_; ++i) {
       if (entries_[i].epoch == epoch_) moving_.push_back(entries_[i]);

@@ -72,49 +72,63 @@ std::uint32_t cell(double c, double lo, double extent) {
       std::clamp(scaled, 0.0, static_cast<double>((1u << kBits) - 1)));
 }
 
-}  // namespace
+// Points are asked for this far ahead of use.
+constexpr std::size_t kAhead = 16;
 
-void brio_hilbert_order(const std::vector<predicates::Point3>& points,
-                        std::vector<std::uint32_t>& ids, int threads) {
-  if (ids.empty()) return;
-  // ids is a random order: every point read misses the cache unless it is asked for ahead.
-  auto prefetch = [&](std::size_t i) {
-    if (i < ids.size()) __builtin_prefetch(&points[ids[i]]);
+// The cube the keys are taken in: the bounding box of points[ids[i]] (or of the first `count`
+// points when ids is null), its largest side on all three axes, so that cells are cubes (a flat
+// input stays a flat curve).
+HilbertFrame curve_frame(const std::vector<predicates::Point3>& points,
+                         const std::vector<std::uint32_t>* ids, std::size_t count, int threads) {
+  const std::size_t n = ids != nullptr ? ids->size() : count;
+  auto at = [&](std::size_t i) -> const predicates::Point3& {
+    return points[ids != nullptr ? (*ids)[i] : i];
   };
-  constexpr std::size_t kAhead = 16;
-  // The bounding box, each thread over its range of ids.
   const std::size_t parts = static_cast<std::size_t>(std::max(threads, 1));
-  std::vector<std::pair<predicates::Point3, predicates::Point3>> boxes(
-      parts, {points[ids[0]], points[ids[0]]});
-  in_parallel_ranges(ids.size(), threads,
-                     [&](std::size_t begin, std::size_t end, std::size_t part) {
-                       auto [lo, hi] = boxes[part];
-                       for (std::size_t i = begin; i < end; ++i) {
-                         prefetch(i + kAhead);
-                         const predicates::Point3& p = points[ids[i]];
-                         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-                         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-                       }
-                       boxes[part] = {lo, hi};
-                     });
-  predicates::Point3 lo = boxes[0].first;  // not a structured binding: the lambda below uses it
+  std::vector<std::pair<predicates::Point3, predicates::Point3>> boxes(parts, {at(0), at(0)});
+  in_parallel_ranges(n, threads, [&](std::size_t begin, std::size_t end, std::size_t part) {
+    auto [lo, hi] = boxes[part];
+    for (std::size_t i = begin; i < end; ++i) {
+      // A random order misses the cache at every point unless it is asked for ahead.
+      if (ids != nullptr && i + kAhead < n) __builtin_prefetch(&at(i + kAhead));
+      const predicates::Point3& p = at(i);
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    boxes[part] = {lo, hi};
+  });
+  predicates::Point3 lo = boxes[0].first;
   predicates::Point3 hi = boxes[0].second;
   for (const auto& [part_lo, part_hi] : boxes) {
     lo = {std::min(lo.x, part_lo.x), std::min(lo.y, part_lo.y), std::min(lo.z, part_lo.z)};
     hi = {std::max(hi.x, part_hi.x), std::max(hi.y, part_hi.y), std::max(hi.z, part_hi.z)};
   }
-  // One scale for the three axes keeps the cells cubes (a flat input stays a flat curve). The
-  // halving keeps the extent finite for coordinates near DBL_MAX.
-  const double extent =
-      2 * std::max({hi.x / 2 - lo.x / 2, hi.y / 2 - lo.y / 2, hi.z / 2 - lo.z / 2});
+  // The halving keeps the extent finite for coordinates near DBL_MAX.
+  return {lo, 2 * std::max({hi.x / 2 - lo.x / 2, hi.y / 2 - lo.y / 2, hi.z / 2 - lo.z / 2})};
+}
+
+}  // namespace
+
+HilbertFrame hilbert_frame(const std::vector<predicates::Point3>& points, std::size_t count,
+                           int threads) {
+  if (count == 0) return {{0, 0, 0}, 0};
+  return curve_frame(points, nullptr, std::min(count, points.size()), threads);
+}
+
+std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p) {
+  return hilbert_key(cell(p.x, frame.lo.x, frame.extent), cell(p.y, frame.lo.y, frame.extent),
+                     cell(p.z, frame.lo.z, frame.extent), kBits);
+}
+
+void brio_hilbert_order(const std::vector<predicates::Point3>& points,
+                        std::vector<std::uint32_t>& ids, int threads) {
+  if (ids.empty()) return;
+  const HilbertFrame frame = curve_frame(points, &ids, 0, threads);
   std::vector<KeyedId> keyed(ids.size());
   in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
-      prefetch(i + kAhead);
-      const predicates::Point3& p = points[ids[i]];
-      keyed[i] = {hilbert_key(cell(p.x, lo.x, extent), cell(p.y, lo.y, extent),
-                              cell(p.z, lo.z, extent), kBits),
-                  ids[i]};
+      if (i + kAhead < ids.size()) __builtin_prefetch(&points[ids[i + kAhead]]);
+      keyed[i] = {hilbert_key_in(frame, points[ids[i]]), ids[i]};
     }
   });
   // Rounds from the end: [n/2, n), [n/4, n/2), ... and a first round [0, end) of at most

@@ -25,6 +25,17 @@ std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, uns
 void brio_hilbert_order(const std::vector<predicates::Point3>& points,
                         std::vector<std::uint32_t>& ids, int threads = 1);
 
+// The cube a Hilbert curve fills: its corner and side.
+struct HilbertFrame {
+  predicates::Point3 lo;
+  double extent;
+};
+// The cube around the first `count` points, as brio_hilbert_order takes it for its points.
+HilbertFrame hilbert_frame(const std::vector<predicates::Point3>& points, std::size_t count,
+                           int threads = 1);
+// p's key on the curve through `frame` (a point outside the cube takes its nearest cell).
+std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p);
+
 inline constexpr std::size_t kFirstRound = 256;
 
 }  // namespace dtlab::engine

@@ -126,6 +126,13 @@ class TetStore {
     set_stride();
   }
   [[nodiscard]] bool has_lock_words() const { return lock_words_; }
+  // A store that other threads read while it changes, without lock words (the partitioned
+  // method): aliveness stays out of the record, whose vertices a reader must see unchanged, in
+  // the byte per slot. Before the first allocation.
+  void keep_alive_flags(bool keep) {
+    alive_flags_ = keep;
+    set_stride();
+  }
 
   // Whether slot t holds a live tetrahedron. Dead tetrahedra are DAG history (or, in walk mode,
   // free slots).
@@ -133,6 +140,8 @@ class TetStore {
   //   record's cache line; release on death and birth, acquire on reading.
   // - Where only dead records are read (DAG children, one thread): a byte per slot, in an array
   //   after the block's slots (a byte in the slot would cost the alignment of the next record).
+  // - Where other threads read the mesh without lock words (the partitioned method): the same
+  //   byte, with release and acquire.
   // - A sequential walk keeps neither: nobody reads a dead record there (the walk's remembered
   //   start and the legalization's stack ask first), so death writes kDeadVertex into the
   //   record's last vertex, and birth is writing the record. 32 bytes a slot instead of 33.
@@ -322,7 +331,7 @@ class TetStore {
   }
   void set_stride() {
     stride_ = children_offset() + (children_ ? sizeof(Children) : 0);
-    alive_in_record_ = !children_ && !lock_words_;
+    alive_in_record_ = !children_ && !lock_words_ && !alive_flags_;
   }
   char* new_block() const {
     void* memory =
@@ -354,6 +363,7 @@ class TetStore {
   std::atomic<std::size_t> blocks_mapped_{0};
   bool children_ = true;
   bool lock_words_ = true;
+  bool alive_flags_ = false;
   bool alive_in_record_ = false;  // neither lock words nor children: a sequential walk
   std::size_t stride_ = sizeof(Tet) + sizeof(std::uint32_t) + sizeof(Children);  // per slot
   std::size_t capacity_ = kMaxTets;

@@ -42,7 +42,7 @@ class LockWords {
     bool waited = false;
     for (std::uint64_t spin = 0;; ++spin) {
       std::uint32_t seen = 0;
-      if (try_take(word, seen)) {
+      if (try_take(word, seen)) [[likely]] {
         held_.push_back(t);
         if (waited) withdraw_wait();
         maybe_delay();

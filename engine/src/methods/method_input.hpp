@@ -37,5 +37,6 @@ std::vector<Tetrahedron> run_optimistic_prevent(const MethodInput& input,
                                                 TriangulationStats& stats);
 std::vector<Tetrahedron> run_burglary(const MethodInput& input, TriangulationStats& stats);
 std::vector<Tetrahedron> run_batch(const MethodInput& input, TriangulationStats& stats);
+std::vector<Tetrahedron> run_partitioned(const MethodInput& input, TriangulationStats& stats);
 
 }  // namespace dtlab::engine

@@ -32,8 +32,8 @@ class DetectSync : public UndoLogSync {
  private:
   // Registers the wait and checks for a cycle; a real one is withdrawn inside the critical
   // section, so that the partner does not see this wait and give up too (both giving up could
-  // repeat forever).
-  bool deadlocked(std::uint32_t owner, TetId t) {
+  // repeat forever). Out of line: the wait's slow path, kept out of acquire()'s registers.
+  [[gnu::noinline]] bool deadlocked(std::uint32_t owner, TetId t) {
     std::lock_guard<std::mutex> guard(table_.cycle);
     if (register_wait_locked(owner, t) != Cycle::Real) return false;
     table_.waiting_for[self_].store(0, std::memory_order_relaxed);

@@ -55,7 +55,10 @@ class ParallelRun {
   using Duplicates = std::vector<std::pair<VertexId, VertexId>>;
 
   // `inserting_threads`: the threads that write the mesh (each an entry of stats.threads).
-  ParallelRun(const MethodInput& input, TriangulationStats& stats, int inserting_threads)
+  // `lock_words`: a lock word per slot (the lock methods); without, the partitioned method's
+  // store keeps aliveness in a byte per slot, out of the records other threads read.
+  ParallelRun(const MethodInput& input, TriangulationStats& stats, int inserting_threads,
+              bool lock_words = true)
       : input(input),
         options(input.options),
         stats(stats),
@@ -73,7 +76,8 @@ class ParallelRun {
         walk_fallbacks_(static_cast<std::size_t>(threads), 0) {
     if (options.max_tetrahedra > 0) mesh.tets.set_capacity(options.max_tetrahedra);
     mesh.tets.keep_children(location.history);
-    mesh.tets.keep_lock_words(true);
+    mesh.tets.keep_lock_words(lock_words);
+    mesh.tets.keep_alive_flags(!lock_words);
     TriangulationStats start_stats;
     NoSync no_sync;
     IncrementalDelaunay<K, NoSync>(mesh, options, start_stats, no_sync)

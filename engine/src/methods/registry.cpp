@@ -32,6 +32,10 @@ const std::array kMethods{
                true,  1, true, true, true, true, true},   &run_burglary},
   MethodEntry{{Method::Batch,             "batch",              "T - 1 threads locate without locks, one thread inserts what they found (described in the paper, built here)",
                true,  2, true, true, true, true, false},  &run_batch},
+  MethodEntry{{Method::Partitioned,       "partitioned",        "no locks: each pass cuts a Hilbert curve through the points into one part a thread; an insertion that reaches another part waits for a pass whose curve and cuts differ (Marot, Pellerin, Remacle 2019)",
+               true,  1, false, true, true, true, false,
+               "its passes insert in the curve's order, not the random order the DAG's expected cost rests on, and it reuses dead slots, which the DAG keeps"},
+               &run_partitioned},
 };
 // clang-format on
 
@@ -77,7 +81,10 @@ std::string method_names() {
 std::optional<std::string> unsupported(const TriangulateOptions& options) {
   const MethodInfo& info = method_info(options.method);
   const std::string method = std::string("--method ") + info.name;
-  if (options.location == Location::Dag && !info.dag) return method + " needs --location walk";
+  if (options.location == Location::Dag && !info.dag) {
+    return method + " needs --location walk" +
+           (info.walk_only_because != nullptr ? std::string(": ") + info.walk_only_because : "");
+  }
   if (options.location == Location::Walk && !info.walk) return method + " needs --location dag";
   if (options.insertion == Insertion::Flips && !info.flips) {
     return method + " needs --insertion cavity";

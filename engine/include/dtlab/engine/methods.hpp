@@ -24,6 +24,7 @@ struct MethodInfo {
   bool flips;           // supports --insertion flips
   bool cavity;          // supports --insertion cavity
   bool post_check;      // has the paper's post-check: --repair=flips and --repair=rebuild
+  const char* walk_only_because = nullptr;  // why a method without dag needs the walk mode
 };
 
 // Every method, in the order of the Method enumeration.

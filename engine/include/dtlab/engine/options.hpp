@@ -8,7 +8,15 @@ namespace dtlab::engine {
 enum class KernelKind { Fast, Adaptive, Filtered, Exact };
 // The lock methods of the paper (Sect. 5) and the batch method it described; each is registered
 // with its name and what it supports in methods.hpp.
-enum class Method { Sequential, Pessimistic, OptimisticDetect, OptimisticPrevent, Burglary, Batch };
+enum class Method {
+  Sequential,
+  Pessimistic,
+  OptimisticDetect,
+  OptimisticPrevent,
+  Burglary,
+  Batch,
+  Partitioned
+};
 // How the permuted points are split among the threads (paper Sect. 6).
 // Auto: static in DAG mode (the paper's), blocks in walk mode, where each thread inserts its
 // share along its own curve and the threads must work apart (effective_distribution).
@@ -65,6 +73,9 @@ struct TriangulateOptions {
   Distribution distribution = Distribution::Auto;
   // Random short delays while locks are held, to shake out races (tests).
   bool stress = false;
+  // The partitioned method: a pass uses as many parts (threads) as it has this many points for,
+  // at most `threads`; smaller passes run on one thread. Tests lower it to cut small inputs.
+  std::uint32_t points_per_part = 2048;
   // A parallel run with no finished insertion for this long is stopped and reported as a
   // failure; 0 scales the limit with the work: 10 s + 100 us per point, at most 60 s.
   double watchdog_seconds = 0.0;

@@ -57,6 +57,17 @@ struct ThreadStats {
   std::uint64_t suspicious_tetrahedra = 0;  // marks left for the post-check
 };
 
+// One pass of the partitioned method: the points it tried, each thread inserting only where its
+// part of the curve owns the mesh; the points whose change reached another part wait for the next
+// pass (whose cuts differ).
+struct PartitionPass {
+  std::uint64_t points = 0;     // tried in this pass
+  std::uint64_t parts = 0;      // threads inserting (1: the pass runs on one thread)
+  std::uint64_t postponed = 0;  // left for a later pass
+  double seconds = 0.0;         // the pass's wall time
+  double imbalance = 1.0;       // the busiest part's time over the parts' mean (1: balanced)
+};
+
 // Burglary's sequential post-check (paper Sect. 5): the exact validator's count after the
 // parallel run, and with --repair the flips on the marked tetrahedra and the counts after them.
 struct PostCheck {
@@ -154,7 +165,8 @@ struct TriangulationStats {
   std::uint64_t queue_full_waits = 0;   // batch: locating threads blocked on a full queue
   std::uint64_t queue_empty_waits = 0;  // batch: the inserting thread found the queue empty
   PostCheck post_check;                 // burglary
-  SplayStats splay;                     // --repair (star splaying)
+  std::vector<PartitionPass> partition_passes;  // partitioned
+  SplayStats splay;                             // --repair (star splaying)
 };
 
 // The stats and the options as one JSON object (the --stats output).

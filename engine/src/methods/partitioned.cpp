@@ -1,0 +1,239 @@
+// The partitioned method (after Marot, Pellerin and Remacle 2019; docs/design.md, "The
+// partitioned method"): no lock on the hot path. Each pass lays a Hilbert curve through a cube
+// moved against the points and cuts it into one arc a thread (CurvePartition); a thread inserts
+// the pass's points of its arc, and an insertion that would change a tetrahedron with a vertex of
+// another arc is given up (PartitionSync) and waits for the next pass, whose curve and cuts lie
+// elsewhere. The passes follow the BRIO rounds of the walk
+// mode's order; what is left after the last round goes in by further passes, the last ones on one
+// thread. Walk mode only: the passes change the insertion order, which the DAG's expected cost
+// rests on.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "location/insertion_order.hpp"
+#include "methods/curve_partition.hpp"
+#include "methods/kernel_dispatch.hpp"
+#include "methods/method_input.hpp"
+#include "methods/parallel_run.hpp"
+#include "methods/partition_sync.hpp"
+#include "support/parallel_ranges.hpp"
+
+namespace dtlab::engine {
+namespace {
+
+// Passes after the last round that may still use several parts; then one part inserts the rest.
+constexpr int kFinalParallelPasses = 3;
+// Keys sampled to place the cuts.
+constexpr std::size_t kCutSample = 4096;
+
+// A part gets at least options.points_per_part points: in smaller passes the arcs are short,
+// most insertions cross a cut, and one thread is faster.
+int parts_for(std::size_t points, const TriangulateOptions& options) {
+  const std::size_t most = static_cast<std::size_t>(std::clamp(options.threads, 1, 255));
+  const std::size_t per_part = std::max<std::size_t>(1, options.points_per_part);
+  return static_cast<int>(std::clamp<std::size_t>(points / per_part, 1, most));
+}
+
+// The walk mode's BRIO rounds as ranges of `order` positions, first round first: [m/2, m),
+// [m/4, m/2), ..., and a first round of at most kFirstRound points (insertion_order.hpp).
+std::vector<std::pair<std::size_t, std::size_t>> brio_rounds(std::size_t m) {
+  std::vector<std::pair<std::size_t, std::size_t>> rounds;
+  std::size_t end = m;
+  while (end > 0) {
+    const std::size_t begin = end <= kFirstRound ? 0 : end / 2;
+    rounds.emplace_back(begin, end);
+    end = begin;
+  }
+  std::reverse(rounds.begin(), rounds.end());
+  return rounds;
+}
+
+// Pass k's cube: twice the input's, its corner moved back by a fraction of the input's side on
+// each axis (the fractions a low-discrepancy sequence: the additive recurrence by the reciprocals
+// of the plastic number's powers, so that successive passes move the curve's coarse cell faces,
+// where the arcs meet, to new places through the points).
+HilbertFrame moved_frame(const HilbertFrame& input, int k) {
+  constexpr double kStep[3] = {0.8191725133961645, 0.6710436067037893, 0.5497004779019703};
+  double shift[3];
+  for (int a = 0; a < 3; ++a) shift[a] = std::fmod(0.5 + kStep[a] * k, 1.0);
+  return {{input.lo.x - shift[0] * input.extent, input.lo.y - shift[1] * input.extent,
+           input.lo.z - shift[2] * input.extent},
+          2 * input.extent};
+}
+
+template <class K>
+class PartitionedRun {
+ public:
+  explicit PartitionedRun(const MethodInput& input, TriangulationStats& stats)
+      : run_(input, stats, std::max(1, input.options.threads), /*lock_words=*/false),
+        frame_(hilbert_frame(input.points, input.input_count, run_.threads)),
+        part_of_(input.points.size(), 0),
+        failed_(static_cast<std::size_t>(run_.threads)),
+        busy_(static_cast<std::size_t>(run_.threads), 0.0),
+        unlocated_(static_cast<std::size_t>(run_.threads)) {
+    for (int i = 0; i < run_.threads; ++i) {
+      syncs_.push_back(std::make_unique<PartitionSync>(run_.mesh, part_of_));
+      inserters_.push_back(std::make_unique<ThreadInserter<K, PartitionSync>>(
+          run_, i, run_.thread_stats(i), *syncs_.back()));
+    }
+  }
+
+  std::vector<Tetrahedron> run() {
+    std::vector<std::uint32_t> carried;  // postponed points, for the next pass
+    const auto rounds = brio_rounds(run_.order.size());
+    for (const auto& [begin, end] : rounds) {
+      std::vector<std::uint32_t> pending(run_.order.begin() + static_cast<std::ptrdiff_t>(begin),
+                                         run_.order.begin() + static_cast<std::ptrdiff_t>(end));
+      append_by_key(pending, carried);
+      carried = pass(pending, end, parts_for(pending.size(), run_.options));
+    }
+    for (int final_pass = 0; !carried.empty(); ++final_pass) {
+      const int parts =
+          final_pass < kFinalParallelPasses ? parts_for(carried.size(), run_.options) : 1;
+      std::vector<std::uint32_t> pending;
+      append_by_key(pending, carried);
+      carried = pass(pending, run_.order.size(), parts);
+    }
+    for (int i = 0; i < run_.threads; ++i) {
+      run_.finish_thread(i, inserters_[static_cast<std::size_t>(i)]->dt);
+    }
+    return run_.output(run_.finish());
+  }
+
+ private:
+  // The postponed points after the pending ones, in insertion order (the walk mode's: along the
+  // curve within each round; they are few: a sort).
+  void append_by_key(std::vector<std::uint32_t>& pending, std::vector<std::uint32_t>& postponed) {
+    std::sort(postponed.begin(), postponed.end());
+    pending.insert(pending.end(), postponed.begin(), postponed.end());
+    postponed.clear();
+  }
+
+  // Inserts `pending` on `parts` threads; the vertices so far are order[0, inserted_end) and the
+  // first four. Returns the points postponed.
+  std::vector<std::uint32_t> pass(const std::vector<std::uint32_t>& pending,
+                                  std::size_t inserted_end, int parts) {
+    const auto start = std::chrono::steady_clock::now();
+    cut(parts, inserted_end);
+    for (int i = 0; i < run_.threads; ++i) {
+      syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
+    }
+    run_.on_threads([&](int i) {
+      if (i >= parts) return;
+      const auto thread_start = std::chrono::steady_clock::now();
+      insert_part(i, parts, pending);
+      busy_[static_cast<std::size_t>(i)] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - thread_start).count();
+    });
+    std::vector<std::uint32_t> postponed;
+    for (auto& f : failed_) {
+      postponed.insert(postponed.end(), f.begin(), f.end());
+      f.clear();
+    }
+    PartitionPass record;
+    record.points = pending.size();
+    record.parts = static_cast<std::uint64_t>(parts);
+    record.postponed = postponed.size();
+    record.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double most = 0;
+    double sum = 0;
+    for (int i = 0; i < parts; ++i) {
+      most = std::max(most, busy_[static_cast<std::size_t>(i)]);
+      sum += busy_[static_cast<std::size_t>(i)];
+    }
+    record.imbalance = sum > 0 ? most / (sum / parts) : 1.0;
+    run_.stats.partition_passes.push_back(record);
+    return postponed;
+  }
+
+  // Lays the pass's curve (moved_frame), cuts it and names every vertex's part. Cutting one
+  // curve at other places would not do: the arcs of one curve meet along the faces of its coarse
+  // cells whatever the cuts, and the points postponed there would be postponed again. The cuts
+  // are quantiles of a sample of all the points: a BRIO round is a random sample of them, so its
+  // parts get as many points; the postponed points crowd where the last arcs met, and quantiles
+  // of theirs would cut there again.
+  void cut(int parts, std::size_t inserted_end) {
+    if (parts == 1) {
+      partition_.cut({}, 1, 0.0);
+      return;
+    }
+    pass_frame_ = moved_frame(frame_, ++cuts_made_);
+    std::vector<std::uint64_t> sample;
+    const std::size_t count = run_.input.input_count;
+    const std::size_t step = std::max<std::size_t>(1, count / kCutSample);
+    for (std::size_t i = 0; i < count; i += step) {
+      sample.push_back(hilbert_key_in(pass_frame_, run_.input.points[i]));
+    }
+    std::sort(sample.begin(), sample.end());
+    partition_.cut(sample, parts, 0.0);
+    const std::vector<std::uint32_t>& order = run_.order;
+    in_parallel_ranges(inserted_end, run_.threads,
+                       [&](std::size_t begin, std::size_t end, std::size_t) {
+                         for (std::size_t i = begin; i < end; ++i) {
+                           part_of_[order[i]] = name_part(order[i]);
+                         }
+                       });
+    for (const std::uint32_t v : run_.input.first) part_of_[v] = name_part(v);
+  }
+  std::uint8_t name_part(std::uint32_t v) const {
+    return static_cast<std::uint8_t>(
+        partition_.part_of(hilbert_key_in(pass_frame_, run_.input.points[v])));
+  }
+
+  // Thread i's share of the pass: the pending points of its part, in curve order.
+  void insert_part(int i, int parts, const std::vector<std::uint32_t>& pending) {
+    const auto index = static_cast<std::size_t>(i);
+    ThreadStats& counters = run_.stats.threads[index];
+    auto& dt = inserters_[index]->dt;
+    std::vector<std::uint32_t>& failed = failed_[index];
+    using Outcome = typename IncrementalDelaunay<K, PartitionSync>::Outcome;
+    for (const std::uint32_t v : pending) {
+      if (parts > 1 && part_of_[v] != i) continue;
+      if (run_.stopping()) break;
+      const Outcome outcome = dt.insert(v);
+      count_outcome(outcome, counters);
+      if (outcome == Outcome::Unlocated) {
+        // On one part nothing else changes the mesh: an inexact kernel's contradiction, which
+        // repeats; a point is given a bounded number of tries (as in the lock methods).
+        if (++unlocated_[index][v] > WorkSource::kMaxLocationAttempts) {
+          ++counters.abandoned;
+          run_.progressed();
+          continue;
+        }
+      }
+      if (outcome == Outcome::GaveUp || outcome == Outcome::Unlocated) {
+        failed.push_back(v);
+      } else {
+        run_.progressed();
+      }
+    }
+  }
+
+  ParallelRun<K> run_;
+  HilbertFrame frame_;                 // the input's cube
+  HilbertFrame pass_frame_;            // the current pass's curve
+  std::vector<std::uint8_t> part_of_;  // each vertex's part in the current pass
+  CurvePartition partition_;
+  int cuts_made_ = 0;
+  std::vector<std::unique_ptr<PartitionSync>> syncs_;
+  std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
+  std::vector<std::vector<std::uint32_t>> failed_;  // per thread, this pass
+  std::vector<double> busy_;                        // per thread, this pass's seconds
+  std::vector<std::unordered_map<std::uint32_t, int>> unlocated_;  // per thread: failed walks
+};
+
+}  // namespace
+
+std::vector<Tetrahedron> run_partitioned(const MethodInput& input, TriangulationStats& stats) {
+  return with_kernel(input.options, [&]<class K>() {
+    PartitionedRun<K> run(input, stats);
+    return run.run();
+  });
+}
+
+}  // namespace dtlab::engine
