@@ -81,12 +81,12 @@ if [ "${DTLAB_SKIP_TSAN:-0}" != "1" ]; then
     "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel|^SplayTetrahedra\\.EveryThreadCount|^SplaySharedMesh\\.ParallelScan"
 fi
 if [ "${DTLAB_SKIP_FUZZ:-0}" != "1" ]; then
-  # Each libFuzzer harness for a bounded time from its corpus (DTLAB_FUZZ_SECONDS, default 60: the
+  # Each libFuzzer harness for a bounded time from its corpus (DTLAB_FUZZ_SECONDS, default 75: the
   # corpus replay, then at least DTLAB_FUZZ_MIN_EXECS executions of fuzzing).
   t0=$(date +%s)
   mkdir -p build
   set +e
-  scripts/fuzz.sh "${DTLAB_FUZZ_SECONDS:-60}" 2>&1 | tee build/fuzz.log
+  scripts/fuzz.sh "${DTLAB_FUZZ_SECONDS:-75}" 2>&1 | tee build/fuzz.log
   code=${PIPESTATUS[0]}
   set -e
   summary=$(grep -E "^fuzz: [0-9]+ passed, [0-9]+ failed" build/fuzz.log | tail -n1 || true)
