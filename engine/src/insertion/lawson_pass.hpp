@@ -3,7 +3,7 @@
 // flip applies there), each new tetrahedron's faces queued in turn. Lawson flips raise no face of
 // the lifted triangulation, so with exact predicates they cannot cycle; in 3D they can get stuck
 // at a face no flip removes (Joe 1991), which is why the callers check or splay what is left.
-// Burglary's post-check (repair/post_check.cpp) and --repair=flips-splay's first stage run it
+// Burglary's post-check (methods/burglary_post_check.cpp) and --repair=flips-splay's first stage run it
 // alone, on a shared mesh after the run; the inserter (inserter.hpp) has it too, for the tests'
 // forced flips.
 #include <algorithm>

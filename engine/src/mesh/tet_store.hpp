@@ -176,11 +176,11 @@ class TetStore {
     alive_flag(t).store(alive, Order);
   }
   // Where lock words exist, a tetrahedron's aliveness is this bit of its word (the lock methods
-  // keep the other bits: optimistic_sync.hpp), read with the record's own cache line instead of
+  // keep the other bits: methods/lock_words.hpp), read with the record's own cache line instead of
   // a byte array's.
   static constexpr std::uint32_t kAliveBit = 0x8000'0000U;
   // Owner of t's lock (thread id + 1; 0 when free) in the bits below kAliveBit and the lock
-  // methods' own flag (optimistic_sync.hpp). Only where has_lock_words().
+  // methods' own flag (methods/lock_table.hpp, kLogged). Only where has_lock_words().
   [[gnu::always_inline]] std::atomic<std::uint32_t>& lock_word(TetId t) const {
     assert(lock_words_);
     return *std::launder(reinterpret_cast<std::atomic<std::uint32_t>*>(slot(t) + sizeof(Tet)));

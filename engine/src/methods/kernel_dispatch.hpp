@@ -29,7 +29,7 @@ decltype(auto) with_kernel(const TriangulateOptions& options, F&& f) {
 }
 
 // Every kernel the engine's templates are instantiated for, X(K) for each: the explicit
-// instantiations of the templates that one file defines and others call (repair/post_check.cpp).
+// instantiations of the templates that one file defines and others call (methods/burglary_post_check.cpp).
 #define DTLAB_FOR_EACH_KERNEL(X)                     \
   X(predicates::FastKernel)                          \
   X(predicates::AdaptiveKernel)                      \

@@ -2,7 +2,7 @@
 // optimistic-detect (paper Sect. 5, Fig. 6): a thread that finds a lock taken waits for it,
 // registering the wait in the LockTable; when its wait closes a cycle of waits (a deadlock,
 // confirmed by find_cycle) it gives its insertion up (undo log) and retries the point later.
-// run_optimistic_detect (method_runs.hpp) runs it on the optimistic worker loop.
+// run_optimistic_detect (registered in registry.cpp) runs it on the optimistic worker loop.
 #include <atomic>
 #include <cstdint>
 #include <mutex>

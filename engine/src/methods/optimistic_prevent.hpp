@@ -3,7 +3,7 @@
 // has a priority; a thread that holds a lock never waits for a thread of higher priority (ties:
 // the lower id wins), it gives its insertion up (undo log) and raises its own priority, so that
 // it wins later. A thread that holds no lock waits: nobody waits for it, so its wait closes no
-// cycle. run_optimistic_prevent (method_runs.hpp) runs it on the optimistic worker loop.
+// cycle. run_optimistic_prevent (registered in registry.cpp) runs it on the optimistic worker loop.
 #include <atomic>
 #include <cstdint>
 

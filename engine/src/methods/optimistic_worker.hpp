@@ -19,7 +19,9 @@ template <class Sync, class K, class Done>
 void insert_optimistically(ParallelRun<K>& run, Done&& done) {
   run.split_among(run.threads);
   run.on_threads([&](int i) {
-    ThreadStats& counters = run.stats.threads[static_cast<std::size_t>(i)];
+    // Counted in the thread's own object, stored once at the end: the threads' entries of
+    // stats.threads share cache lines, and a count per insertion there bounced them between cores.
+    ThreadStats counters;
     WorkSource work = run.work_for(i);
     Sync sync(run.mesh, run.table, static_cast<std::uint32_t>(i + 1), counters, run.options.stress);
     ThreadInserter<K, Sync> thread(run, i, run.thread_stats(i), sync);
@@ -52,6 +54,7 @@ void insert_optimistically(ParallelRun<K>& run, Done&& done) {
     }
     run.finish_thread(i, dt);
     done(i, sync);
+    run.stats.threads[static_cast<std::size_t>(i)] = counters;
   });
 }
 

@@ -63,8 +63,8 @@ class PartitionSync {
   void rollback() {
     for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
       Tet& tet = mesh_.tets[it->tet];
-      for (std::size_t f = 0; f < 4; ++f) {
-        std::atomic_ref<FaceRef>(tet.neighbor[f]).store(it->neighbor[f], std::memory_order_release);
+      for (int f = 0; f < 4; ++f) {
+        store_neighbor(tet, f, it->neighbor[static_cast<std::size_t>(f)]);
       }
     }
     for (const Saved& s : log_) mesh_.tets.set_alive(s.tet, true);

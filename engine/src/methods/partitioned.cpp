@@ -21,6 +21,7 @@
 #include "methods/parallel_run.hpp"
 #include "methods/partition_sync.hpp"
 #include "support/parallel_ranges.hpp"
+#include "support/radix_sort.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -88,14 +89,14 @@ class PartitionedRun {
     for (const auto& [begin, end] : rounds) {
       std::vector<std::uint32_t> pending(run_.order.begin() + static_cast<std::ptrdiff_t>(begin),
                                          run_.order.begin() + static_cast<std::ptrdiff_t>(end));
-      append_by_key(pending, carried);
+      append_in_order(pending, carried);
       carried = pass(pending, end, parts_for(pending.size(), run_.options));
     }
     for (int final_pass = 0; !carried.empty(); ++final_pass) {
       const int parts =
           final_pass < kFinalParallelPasses ? parts_for(carried.size(), run_.options) : 1;
       std::vector<std::uint32_t> pending;
-      append_by_key(pending, carried);
+      append_in_order(pending, carried);
       carried = pass(pending, run_.order.size(), parts);
     }
     for (int i = 0; i < run_.threads; ++i) {
@@ -107,7 +108,7 @@ class PartitionedRun {
  private:
   // The postponed points after the pending ones, in insertion order (the walk mode's: along the
   // curve within each round; they are few: a sort).
-  void append_by_key(std::vector<std::uint32_t>& pending, std::vector<std::uint32_t>& postponed) {
+  void append_in_order(std::vector<std::uint32_t>& pending, std::vector<std::uint32_t>& postponed) {
     std::sort(postponed.begin(), postponed.end());
     pending.insert(pending.end(), postponed.begin(), postponed.end());
     postponed.clear();
@@ -115,10 +116,11 @@ class PartitionedRun {
 
   // Inserts `pending` on `parts` threads; the vertices so far are order[0, inserted_end) and the
   // first four. Returns the points postponed.
-  std::vector<std::uint32_t> pass(const std::vector<std::uint32_t>& pending,
-                                  std::size_t inserted_end, int parts) {
+  std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t inserted_end,
+                                  int parts) {
     const auto start = std::chrono::steady_clock::now();
     cut(parts, inserted_end);
+    if (parts > 1) sort_along_pass_curve(pending);
     for (int i = 0; i < run_.threads; ++i) {
       syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
     }
@@ -149,6 +151,22 @@ class PartitionedRun {
     record.imbalance = sum > 0 ? most / (sum / parts) : 1.0;
     run_.stats.partition_passes.push_back(record);
     return postponed;
+  }
+
+  // A pass with several parts inserts along its own curve: each part's points are then one run
+  // (the wrapping part's two), so that a thread walks from each point to the next, not across the
+  // other parts between its runs of the walk mode's order.
+  void sort_along_pass_curve(std::vector<std::uint32_t>& pending) const {
+    std::vector<KeyedId> keyed(pending.size());
+    std::vector<KeyedId> scratch(pending.size());
+    in_parallel_ranges(
+        pending.size(), run_.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+          for (std::size_t i = begin; i < end; ++i) {
+            keyed[i] = {hilbert_key_in(pass_frame_, run_.input.points[pending[i]]), pending[i]};
+          }
+        });
+    stable_sort_by_key(keyed.data(), scratch.data(), keyed.size(), run_.threads);
+    for (std::size_t i = 0; i < keyed.size(); ++i) pending[i] = keyed[i].second;
   }
 
   // Lays the pass's curve (moved_frame), cuts it and names every vertex's part. Cutting one
@@ -185,10 +203,10 @@ class PartitionedRun {
         partition_.part_of(hilbert_key_in(pass_frame_, run_.input.points[v])));
   }
 
-  // Thread i's share of the pass: the pending points of its part, in curve order.
+  // Thread i's share of the pass: the pending points of its part, in the pass's order.
   void insert_part(int i, int parts, const std::vector<std::uint32_t>& pending) {
     const auto index = static_cast<std::size_t>(i);
-    ThreadStats& counters = run_.stats.threads[index];
+    ThreadStats counters;  // added to stats.threads once (optimistic_worker.hpp says why)
     auto& dt = inserters_[index]->dt;
     std::vector<std::uint32_t>& failed = failed_[index];
     using Outcome = typename IncrementalDelaunay<K, PartitionSync>::Outcome;
@@ -212,6 +230,12 @@ class PartitionedRun {
         run_.progressed();
       }
     }
+    // The counters this method's insertions touch (count_outcome's and the abandonments).
+    ThreadStats& total = run_.stats.threads[index];
+    total.inserted += counters.inserted;
+    total.duplicates += counters.duplicates;
+    total.abandoned += counters.abandoned;
+    total.give_ups += counters.give_ups;
   }
 
   ParallelRun<K> run_;

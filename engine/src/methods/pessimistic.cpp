@@ -17,7 +17,7 @@ std::vector<Tetrahedron> run_with(const MethodInput& input, TriangulationStats& 
   std::mutex global;  // the one critical section
   NoSync no_sync;
   run.on_threads([&](int i) {
-    ThreadStats& counters = run.stats.threads[static_cast<std::size_t>(i)];
+    ThreadStats counters;  // stored once at the end (optimistic_worker.hpp says why)
     WorkSource work = run.work_for(i);
     ThreadInserter<K, NoSync> thread(run, i, run.thread_stats(i), no_sync);
     auto& dt = thread.dt;
@@ -31,6 +31,7 @@ std::vector<Tetrahedron> run_with(const MethodInput& input, TriangulationStats& 
       run.progressed();
     }
     run.finish_thread(i, dt);
+    run.stats.threads[static_cast<std::size_t>(i)] = counters;
   });
   return run.output(run.finish());
 }

@@ -72,8 +72,8 @@ class UndoLogSync : public LockWords {
     assert(!ended_);  // nothing after a last write can be refused
     for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
       Tet& tet = mesh_.tets[it->tet];
-      for (std::size_t f = 0; f < 4; ++f) {  // walking threads read these without a lock
-        std::atomic_ref<FaceRef>(tet.neighbor[f]).store(it->neighbor[f], std::memory_order_release);
+      for (int f = 0; f < 4; ++f) {  // walking threads read these without a lock
+        store_neighbor(tet, f, it->neighbor[static_cast<std::size_t>(f)]);
       }
       for (std::size_t i = 0; i < 4; ++i)
         if (mesh_.tets.has_children()) {
