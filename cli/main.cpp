@@ -91,6 +91,11 @@ int main(int argc, char** argv) {
                   "partitioned: a pass uses one part (thread) per this many points, at most "
                   "--threads (default 2048; smaller passes run on one thread)")
       ->check(CLI::Range(1u, 1u << 30));
+  tri->add_option(
+         "--grid-cells", targs.options.lock_grid_cells,
+         "lock-grid: cells per axis of the lock grid (default: about 256 points a cell, at "
+         "least 2 cbrt(threads) per axis; --stats reports lock_grid_cells)")
+      ->check(CLI::Range(1u, 256u));
   std::string repair = "none";
   tri->add_flag("--repair{splay}", repair,
                 "repair the mesh after the run by star splaying, exact, from every non-Delaunay "

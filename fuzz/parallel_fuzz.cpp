@@ -5,7 +5,8 @@
 // reachable, none twice within 0..251):
 //   config = method + 7 * ((threads - 2) + 3 * (distribution + 2 * (kernel + 3 * splay)))
 //   method:       0 pessimistic (static distribution) or partitioned (dynamic: see below),
-//                 1 optimistic-detect, 2 optimistic-prevent, 3 burglary,
+//                 1 optimistic-detect, 2 optimistic-prevent (static) or lock-grid (dynamic: walk
+//                 mode, 2 cells per axis), 3 burglary,
 //                 4 burglary --repair (star splaying), 5 burglary --repair=rebuild (the paper's
 //                 flips, then the reported rebuild), 6 batch
 //   threads:      2, 3, 4
@@ -94,6 +95,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.insertion =
         points.size() % 2 == 1 ? dtlab::engine::Insertion::Cavity : dtlab::engine::Insertion::Flips;
     options.points_per_part = 8;
+  }
+  if (method == 2 && distribution != 0) {
+    // The dynamic distribution's optimistic-prevent slot runs the lock grid (walk mode only), on
+    // 2 cells per axis so that the threads meet in cells.
+    options.method = Method::LockGrid;
+    options.location = dtlab::engine::Location::Walk;
+    options.lock_grid_cells = 2;
   }
   if (options.kernel == KernelKind::Fast) {
     // Small integers keep the fast kernel's arithmetic exact; a twelfth of them (rounded, as a

@@ -97,6 +97,11 @@ const std::vector<Configuration>& configurations() {
     v.push_back({KernelKind::Filtered, Method::Partitioned, 2, none, walk, cavity});
     v.push_back({KernelKind::Exact, Method::Partitioned, 2, none, walk, flips});
     v.push_back({KernelKind::Fast, Method::Partitioned, 2, engine::Repair::Splay, walk, cavity});
+    // The lock grid (walk mode only): both insertions and threads, the fast kernel repaired
+    // (the exact kernel: tests/lock_grid_test.cpp).
+    v.push_back({KernelKind::Adaptive, Method::LockGrid, 2, none, walk, flips});
+    v.push_back({KernelKind::Filtered, Method::LockGrid, 4, none, walk, cavity});
+    v.push_back({KernelKind::Fast, Method::LockGrid, 2, engine::Repair::Splay, walk, cavity});
     return v;
   }();
   return all;
@@ -141,6 +146,8 @@ void check_configuration(const Configuration& config, const PointSetCase& c, std
   options.insertion = config.insertion;
   // The partitioned method: parts of 8 points, so that these small sets are cut into parts.
   options.points_per_part = 8;
+  // The lock grid: 2 cells per axis, so that the threads meet in cells.
+  options.lock_grid_cells = 2;
   if (!tetrahedralizable) {
     RC_ASSERT_THROWS_AS(engine::triangulate(c.points, options), engine::TriangulationError);
     return;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (cmake --preset fuzz: clang, ASan + UBSan) and runs each one for a
-# bounded time, starting from its seed corpus, two at a time. New inputs go to a scratch copy of
-# the corpus (build/fuzz/corpus/TARGET), crashes to build/fuzz/artifacts/TARGET/.
+# Builds the libFuzzer harnesses (cmake --preset fuzz: clang, ASan + UBSan; DTLAB_FUZZ_PRESET=asan
+# takes them from the asan preset's build, which has them beside the tests) and runs each one for
+# a bounded time, starting from its seed corpus, two at a time. New inputs go to a scratch copy of
+# the corpus (build/PRESET/corpus/TARGET), crashes to build/PRESET/artifacts/TARGET/.
 # Usage: scripts/fuzz.sh [SECONDS-PER-FUZZER (default 60)] [TARGET...]
 # Ends with "fuzz: N passed, N failed". A fuzzer passes when it finds nothing in its time and has
 # fuzzed: at least DTLAB_FUZZ_MIN_EXECS (default 100) executions after replaying its corpus (a run
@@ -15,17 +16,19 @@ shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=(triangulate parallel predicates parsers repair); fi
 
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+preset="${DTLAB_FUZZ_PRESET:-fuzz}"
+cmake --preset "$preset" >/dev/null
+cmake --build --preset "$preset" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+out="build/$preset"
 
-run_one() {  # run_one TARGET: exit status of the fuzzer, log in build/fuzz/TARGET.log
+run_one() {  # run_one TARGET: exit status of the fuzzer, log in build/PRESET/TARGET.log
   local t="$1"
-  local corpus="build/fuzz/corpus/$t" artifacts="build/fuzz/artifacts/$t"
+  local corpus="$out/corpus/$t" artifacts="$out/artifacts/$t"
   mkdir -p "$corpus" "$artifacts"
   cp -n fuzz/corpus/"$t"/* "$corpus"/
-  "build/fuzz/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 \
+  "$out/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 \
     -dict="fuzz/$t.dict" -artifact_prefix="$artifacts/" -print_final_stats=1 \
-    "$corpus" >"build/fuzz/$t.log" 2>&1
+    "$corpus" >"$out/$t.log" 2>&1
 }
 
 min_execs="${DTLAB_FUZZ_MIN_EXECS:-100}"
@@ -34,7 +37,7 @@ failed=0
 pids=()
 names=()
 report() {  # report INDEX
-  local t="${names[$1]}" log="build/fuzz/${names[$1]}.log"
+  local t="${names[$1]}" log="$out/${names[$1]}.log"
   local counters inited total fuzzed cov code=0
   wait "${pids[$1]}" || code=$?
   counters=$(grep -Eo 'Loaded [0-9]+ modules +\([0-9]+ inline 8-bit counters\)' "$log" |
@@ -45,7 +48,7 @@ report() {  # report INDEX
   fuzzed=$(( ${total:-0} - ${inited:-0} ))
   if [ "$code" -ne 0 ]; then
     failed=$((failed + 1))
-    echo "fuzz_$t: FAILED; log $log, inputs in build/fuzz/artifacts/$t/"
+    echo "fuzz_$t: FAILED; log $log, inputs in $out/artifacts/$t/"
     tail -n 30 "$log"
   elif [ -z "$total" ] || [ -z "$inited" ] || [ "$fuzzed" -lt "$min_execs" ]; then
     failed=$((failed + 1))

@@ -95,6 +95,7 @@ void every_family_against_cgal(engine::Location location,
         if (method != engine::Method::Sequential) {
           options.threads = 2;
           options.points_per_part = 32;  // partitioned: these sets cut into parts
+          options.lock_grid_cells = 3;   // lock-grid: cells the threads share
         }
         const std::string what = family + ":" + std::to_string(n) + " seed " + std::to_string(seed);
         if (cgal_dimension(pts) < 3) {
@@ -143,6 +144,14 @@ TEST(CgalOracle, EveryFamilyIdenticalTetrahedraPartitioned) {
                             engine::Method::Partitioned);
   every_family_against_cgal(engine::Location::Walk, engine::Insertion::Cavity,
                             engine::Method::Partitioned);
+}
+
+// The lock grid on 2 threads, 3 cells per axis, both insertions, the same sets.
+TEST(CgalOracle, EveryFamilyIdenticalTetrahedraLockGrid) {
+  every_family_against_cgal(engine::Location::Walk, engine::Insertion::Flips,
+                            engine::Method::LockGrid);
+  every_family_against_cgal(engine::Location::Walk, engine::Insertion::Cavity,
+                            engine::Method::LockGrid);
 }
 
 // Star splaying (issue 12) against CGAL after each of its three uses, on every family with a

@@ -97,8 +97,9 @@ TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
   for (const std::string family : {"uniform", "grid", "sphere", "duplicates"}) {
     const auto points = generators::generate(family, 800, 8).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
-    for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
-                           Method::Batch, Method::Burglary, Method::Partitioned}) {
+    for (const Method m :
+         {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent, Method::Batch,
+          Method::Burglary, Method::Partitioned, Method::LockGrid}) {
       const std::vector<engine::Repair> repairs =
           m == Method::Burglary
               ? std::vector<engine::Repair>{engine::Repair::Splay, engine::Repair::FlipsThenSplay}
@@ -112,6 +113,7 @@ TEST(ParallelMethods, WalkModeEveryMethodGivesTheUniqueMesh) {
           options.stress = true;
           options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
           options.points_per_part = 16;  // partitioned: these small inputs cut into parts
+          options.lock_grid_cells = 3;   // lock-grid: cells the threads share
           options.repair = repair;
           const auto result = engine::triangulate(points, options);
           const std::string what = family + " " + engine::to_string(m) + " " +
@@ -253,6 +255,7 @@ TEST(ParallelMethods, CavityInsertionEveryMethodGivesTheUniqueMesh) {
     options.seed = seed;
     options.distribution = threads == 2 ? Distribution::Dynamic : Distribution::Blocks;
     options.points_per_part = 16;  // partitioned: these small inputs cut into parts
+    options.lock_grid_cells = 3;   // lock-grid: cells the threads share
     const auto result = engine::triangulate(points, options);
     const std::string what = family + " " + engine::to_string(m) + " " + std::to_string(threads) +
                              " seed " + std::to_string(seed);
@@ -276,8 +279,9 @@ TEST(ParallelMethods, CavityInsertionEveryMethodGivesTheUniqueMesh) {
   for (const std::string family : {"uniform", "grid", "sphere", "duplicates"}) {
     const auto points = generators::generate(family, 800, 8).points;
     const auto expected = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
-    for (const Method m : {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent,
-                           Method::Batch, Method::Burglary, Method::Partitioned}) {
+    for (const Method m :
+         {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent, Method::Batch,
+          Method::Burglary, Method::Partitioned, Method::LockGrid}) {
       for (const int threads : {2, 4}) run(family, points, expected, m, threads, 1);
     }
   }

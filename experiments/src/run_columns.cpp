@@ -47,6 +47,7 @@ nlohmann::ordered_json full_stats_template() {
   stats.splay.done = true;
   stats.hull_tetrahedra_lost = 0;
   stats.partition_passes.resize(1);
+  stats.lock_grid_cells = 1;
   engine::TriangulateOptions options;
   options.method = engine::Method::Batch;
   return nlohmann::ordered_json::parse(engine::stats_json(stats, options, "batch", 2));

@@ -1,6 +1,7 @@
 // PLY parser: ASCII, binary_little_endian and binary_big_endian; reads the vertex element's
 // x, y, z (float or double) and skips every other property and element.
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -10,6 +11,9 @@
 
 namespace dtlab::io {
 namespace {
+
+// The longest list a PLY row may declare (each entry is read, so a longer one is no real file).
+constexpr double kMaxListLength = 2147483648.0;
 
 using detail::TextScanner;
 
@@ -240,6 +244,12 @@ std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
           if (p.is_list) {
             const double n = read_scalar(p.count_type, where);
             if (n < 0) throw InputError(name + ": negative list length in " + where);
+            // A count read as a float or from text may be NaN, fractional or beyond any integer
+            // type: converting those is undefined (UBSan under clang, from the parsers' corpus).
+            if (!(n <= kMaxListLength) || n != std::floor(n)) {
+              throw InputError(name + ": list length in " + where +
+                               " is not a whole number up to 2^31");
+            }
             for (std::int64_t j = 0; j < static_cast<std::int64_t>(n); ++j)
               read_scalar(p.type, where);
             continue;

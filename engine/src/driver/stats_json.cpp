@@ -159,6 +159,7 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
           {"scale_exponent", s.scale_exponent}});
   if (!s.threads.empty()) put_threads(j, s, options);
   if (!s.partition_passes.empty()) put_partition_passes(j, s.partition_passes, options);
+  if (s.lock_grid_cells > 0) j["lock_grid_cells"] = s.lock_grid_cells;
   if (s.post_check.done) j["post_check"] = post_check_json(s.post_check, options);
   if (s.splay.done) j["splay"] = splay_json(s.splay);
   put(j, {{"repair", to_string(options.repair)},

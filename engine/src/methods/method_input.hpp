@@ -38,5 +38,6 @@ std::vector<Tetrahedron> run_optimistic_prevent(const MethodInput& input,
 std::vector<Tetrahedron> run_burglary(const MethodInput& input, TriangulationStats& stats);
 std::vector<Tetrahedron> run_batch(const MethodInput& input, TriangulationStats& stats);
 std::vector<Tetrahedron> run_partitioned(const MethodInput& input, TriangulationStats& stats);
+std::vector<Tetrahedron> run_lock_grid(const MethodInput& input, TriangulationStats& stats);
 
 }  // namespace dtlab::engine

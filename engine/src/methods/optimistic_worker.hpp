@@ -1,8 +1,8 @@
 #pragma once
-// The inserting threads of the optimistic methods (optimistic-detect, optimistic-prevent,
-// burglary): each inserts its share with its own lock policy Sync; a point given up on a lock
-// conflict is retried after the rest, once the thread has backed off, and abandoned after too
-// many tries.
+// The inserting threads of the methods that give an insertion up on a lock conflict
+// (optimistic-detect, optimistic-prevent, burglary, lock-grid): each inserts its share with its
+// own lock policy; a point given up is retried after the rest, once the thread has backed off, and
+// abandoned after too many tries.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -13,17 +13,19 @@
 
 namespace dtlab::engine {
 
-// Runs run.threads threads of policy Sync; `done(i, sync)` sees thread i's policy after its last
-// insertion (burglary takes its marks).
-template <class Sync, class K, class Done>
-void insert_optimistically(ParallelRun<K>& run, Done&& done) {
+// Runs run.threads threads, thread i with the policy `make_sync(i, counters)` returns (counters:
+// the thread's ThreadStats); `done(i, sync)` sees thread i's policy after its last insertion
+// (burglary takes its marks).
+template <class K, class MakeSync, class Done>
+void insert_with_policies(ParallelRun<K>& run, MakeSync&& make_sync, Done&& done) {
   run.split_among(run.threads);
   run.on_threads([&](int i) {
     // Counted in the thread's own object, stored once at the end: the threads' entries of
     // stats.threads share cache lines, and a count per insertion there bounced them between cores.
     ThreadStats counters;
     WorkSource work = run.work_for(i);
-    Sync sync(run.mesh, run.table, static_cast<std::uint32_t>(i + 1), counters, run.options.stress);
+    auto sync = make_sync(i, counters);
+    using Sync = decltype(sync);
     ThreadInserter<K, Sync> thread(run, i, run.thread_stats(i), sync);
     auto& dt = thread.dt;
     using Outcome = typename IncrementalDelaunay<K, Sync>::Outcome;
@@ -56,6 +58,18 @@ void insert_optimistically(ParallelRun<K>& run, Done&& done) {
     done(i, sync);
     run.stats.threads[static_cast<std::size_t>(i)] = counters;
   });
+}
+
+// The optimistic methods' threads: thread i's policy is Sync with lock id i + 1.
+template <class Sync, class K, class Done>
+void insert_optimistically(ParallelRun<K>& run, Done&& done) {
+  insert_with_policies(
+      run,
+      [&](int i, ThreadStats& counters) {
+        return Sync(run.mesh, run.table, static_cast<std::uint32_t>(i + 1), counters,
+                    run.options.stress);
+      },
+      done);
 }
 
 // An optimistic method's whole run with policy Sync, for the methods with nothing after their

@@ -55,8 +55,9 @@ class ParallelRun {
   using Duplicates = std::vector<std::pair<VertexId, VertexId>>;
 
   // `inserting_threads`: the threads that write the mesh (each an entry of stats.threads).
-  // `lock_words`: a lock word per slot (the lock methods); without, the partitioned method's
-  // store keeps aliveness in a byte per slot, out of the records other threads read.
+  // `lock_words`: a lock word per slot (the lock methods; the lock grid keeps only the aliveness
+  // bit in it); without, the partitioned method's store keeps aliveness in a byte per slot, out
+  // of the records other threads read.
   ParallelRun(const MethodInput& input, TriangulationStats& stats, int inserting_threads,
               bool lock_words = true)
       : input(input),

@@ -36,6 +36,10 @@ const std::array kMethods{
                true,  1, false, true, true, true, false,
                "its passes insert in the curve's order, not the random order the DAG's expected cost rests on, and it reuses dead slots, which the DAG keeps"},
                &run_partitioned},
+  MethodEntry{{Method::LockGrid,          "lock-grid",          "a lock a cell of a spatial grid: a thread holds the cells of the vertices of what it changes; the lower thread id waits, the higher gives its insertion up by an undo log (after CGAL's Spatial_lock_grid_3 idea)",
+               true,  1, false, true, true, true, false,
+               "its undo log keeps no DAG children, and it reuses dead slots, which the DAG keeps"},
+               &run_lock_grid},
 };
 // clang-format on
 

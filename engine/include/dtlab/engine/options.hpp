@@ -15,7 +15,8 @@ enum class Method {
   OptimisticPrevent,
   Burglary,
   Batch,
-  Partitioned
+  Partitioned,
+  LockGrid
 };
 // How the permuted points are split among the threads (paper Sect. 6).
 // Auto: static in DAG mode (the paper's), blocks in walk mode, where each thread inserts its
@@ -76,6 +77,9 @@ struct TriangulateOptions {
   // The partitioned method: a pass uses as many parts (threads) as it has this many points for,
   // at most `threads`; smaller passes run on one thread. Tests lower it to cut small inputs.
   std::uint32_t points_per_part = 2048;
+  // The lock-grid method: cells per axis of its grid; 0 chooses from the point count and threads
+  // (about 256 points a cell; the stats report the choice).
+  std::uint32_t lock_grid_cells = 0;
   // A parallel run with no finished insertion for this long is stopped and reported as a
   // failure; 0 scales the limit with the work: 10 s + 100 us per point, at most 60 s.
   double watchdog_seconds = 0.0;

@@ -166,6 +166,7 @@ struct TriangulationStats {
   std::uint64_t queue_empty_waits = 0;  // batch: the inserting thread found the queue empty
   PostCheck post_check;                 // burglary
   std::vector<PartitionPass> partition_passes;  // partitioned
+  std::uint64_t lock_grid_cells = 0;            // lock-grid: cells per axis of its grid
   SplayStats splay;                             // --repair (star splaying)
 };
 

@@ -1,0 +1,65 @@
+#pragma once
+// The undo log of the methods without per-tetrahedron lock words (partitioned, lock-grid): a
+// thread saves a tetrahedron's references before each write and undoes its own insertion from
+// them. Which tetrahedra it may write is the method's acquire() (partition_sync.hpp,
+// lock_grid.hpp); nobody else writes them until it commits or rolls back.
+#include <array>
+#include <vector>
+
+#include "insertion/sync.hpp"
+#include "mesh/shared_mesh.hpp"
+#include "mesh/tet_id_list.hpp"
+
+namespace dtlab::engine {
+
+class LocalUndoLog {
+ public:
+  explicit LocalUndoLog(SharedMesh& mesh) : mesh_(mesh) {}
+
+  // Saves t's references before a write. A tetrahedron written twice is saved twice: rollback
+  // restores from the last entry to the first, so the first (the state before the insertion)
+  // wins, and no set of saved ids is needed.
+  void before_write(TetId t) {
+    Saved& s = log_.emplace_back();
+    s.tet = t;
+    s.neighbor = mesh_.tets[t].neighbor;
+  }
+  void created(TetId t, bool last_write = false) {
+    if (!last_write) created_.push_back(t);
+  }
+  void killed(TetId /*t*/, bool /*last_write*/ = false) {}
+  Resume resume() { return Resume::GiveUp; }
+  void mark_suspicious(TetId /*t*/) {}
+
+ protected:
+  void forget() {
+    log_.clear();
+    created_.clear();
+  }
+  // The saved references back (with release: other threads' walks read them), every saved
+  // tetrahedron alive again (only live ones are written), every new one dead (the slot
+  // allocator takes their slots back).
+  void undo() {
+    for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
+      Tet& tet = mesh_.tets[it->tet];
+      for (int f = 0; f < 4; ++f) {
+        store_neighbor(tet, f, it->neighbor[static_cast<std::size_t>(f)]);
+      }
+    }
+    for (const Saved& s : log_) mesh_.tets.set_alive(s.tet, true);
+    for (const TetId t : created_) mesh_.tets.set_alive(t, false);
+    forget();
+  }
+
+  SharedMesh& mesh_;
+
+ private:
+  struct Saved {
+    TetId tet;
+    std::array<FaceRef, 4> neighbor;
+  };
+  std::vector<Saved> log_;
+  TetIdList created_;
+};
+
+}  // namespace dtlab::engine
