@@ -83,7 +83,11 @@ if [ "${DTLAB_SKIP_ASAN:-0}" != "1" ]; then
     run_suite asan "" "" "-DDTLAB_RC_PARAMS=seed=20261121 max_success=100"
 fi
 if [ "${DTLAB_SKIP_TSAN:-0}" != "1" ]; then
-  run_suite tsan "parallel_test lock_grid_test replay_parallel validator_threads_test parallel_ranges_test star_splaying_test" \
+  # BurglaryStaysConsistentAndRepairs is about the sequential post-check and repairs after
+  # burglary (its threads are under TSan in four other tests and the parallel fuzz replay), and
+  # took 202 s of the TSan suite's 395 s of tests on 2026-11-28.
+  ctest_exclude='^ParallelMethods\.BurglaryStaysConsistentAndRepairs$' \
+    run_suite tsan "parallel_test lock_grid_test replay_parallel validator_threads_test parallel_ranges_test star_splaying_test" \
     "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel|^SplayTetrahedra\\.EveryThreadCount|^SplaySharedMesh\\.ParallelScan"
 fi
 if [ "${DTLAB_SKIP_FUZZ:-0}" != "1" ]; then

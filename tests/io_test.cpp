@@ -213,10 +213,23 @@ TEST_F(IoTest, XzCompressedInputIsRead) {
   expect_bitwise_equal(p, io::read_points(path("c.xyz.xz")));
 }
 
+// A write that fails leaves neither the target nor its temporary (PATH.tmp-PID, beside the
+// target): one that cannot open its temporary (no such folder), and one that wrote the whole
+// temporary and could not rename it into place (the target is a folder with a file in it), whose
+// temporary is in the folder scanned.
 TEST_F(IoTest, FailedWriteLeavesNoFile) {
   const std::string target = path("no_such_dir/out.ele");
   EXPECT_ANY_THROW(io::write_ele(target, {{0, 1, 2, 3}}));
   EXPECT_FALSE(fs::exists(target));
+  fs::create_directory(path("occupied.ele"));
+  write("occupied.ele/keep", "x");
+  try {
+    io::write_ele(path("occupied.ele"), {{0, 1, 2, 3}});
+    ADD_FAILURE() << "a write onto a folder succeeded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot rename"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_directory(path("occupied.ele")));
   for (const auto& entry : fs::directory_iterator(dir_)) {
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
   }

@@ -144,7 +144,7 @@ TEST(ParallelMethods, LockGridWaitsAndGivesUpAndGivesTheUniqueMesh) {
 
 // Without --grid-cells the size comes from the point count and threads, and is reported.
 TEST(ParallelMethods, LockGridChoosesAndReportsItsSize) {
-  const auto points = generators::generate("uniform", 20000, 3).points;
+  const auto points = generators::generate("uniform", 12000, 3).points;
   engine::TriangulateOptions options;
   options.location = engine::Location::Walk;
   options.method = Method::LockGrid;

@@ -595,8 +595,28 @@ TEST(ParallelMethods, StatsCountWaitsAndGiveUps) {
   for (const auto& t : r.stats.threads) inserted += t.inserted;
   EXPECT_EQ(inserted + 4, r.stats.inserted);
   EXPECT_EQ(r.stats.inserted, points.size());
+  // Four threads with random delays on 3,000 points wait and give up (about 500 waits and 140
+  // deadlocks given up per run in release builds); every deadlock found is a give-up (a give-up
+  // may also be a descent that a rollback raced), and the JSON's totals are the threads' sums.
+  std::uint64_t waits = 0;
+  std::uint64_t give_ups = 0;
+  std::uint64_t deadlocks = 0;
+  for (const auto& t : r.stats.threads) {
+    waits += t.waits;
+    give_ups += t.give_ups;
+    deadlocks += t.deadlocks;
+  }
+  EXPECT_GT(waits, 0u);
+  EXPECT_GT(deadlocks, 0u);
+  EXPECT_GE(give_ups, deadlocks);
   const std::string json = engine::stats_json(r.stats, options, "optimistic-detect", 4);
-  EXPECT_NE(json.find("\"deadlocks\""), std::string::npos);
+  // Top-level keys (two spaces in; the per-thread objects' are deeper).
+  const auto top = [&](const char* key, std::uint64_t value) {
+    return json.find(std::string("\n  \"") + key + "\": " + std::to_string(value) + ",");
+  };
+  EXPECT_NE(top("waits", waits), std::string::npos) << json;
+  EXPECT_NE(top("give_ups", give_ups), std::string::npos) << json;
+  EXPECT_NE(top("deadlocks", deadlocks), std::string::npos) << json;
   EXPECT_NE(json.find("\"per_thread\""), std::string::npos);
 }
 

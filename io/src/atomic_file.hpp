@@ -21,7 +21,11 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
   ~AtomicFile() {
     if (!committed_) {
-      out_.close();
+      // No exception from here: a commit whose rename failed has closed the stream already, and
+      // closing it again set failbit, which the stream threw from this destructor (a crash, found
+      // by IoTest.FailedWriteLeavesNoFile).
+      out_.exceptions(std::ios::goodbit);
+      if (out_.is_open()) out_.close();
       std::remove(temp_.c_str());
     }
   }
