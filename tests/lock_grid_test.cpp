@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -98,10 +99,45 @@ TEST(ParallelMethods, LockGridSyncHoldsCellsAndWaitsOnlyForHigherIds) {
   EXPECT_EQ(grid.word(7).load(), 0u);
 }
 
+// A give-up after writes (the flips' case) restores them from the undo log, in the store the
+// method runs on (aliveness in the word beside each record): the written references back, the
+// killed tetrahedron alive, the new one dead, every cell let go.
+TEST(ParallelMethods, LockGridRollbackUndoesWhatTheInsertionWrote) {
+  const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  engine::SharedMesh mesh(points);
+  mesh.tets.keep_children(false);
+  mesh.tets.keep_lock_words(true);
+  const TetId t = mesh.tets.allocate();
+  mesh.tets[t].vertex = {0, 1, 2, 3};
+  mesh.tets[t].neighbor = {engine::face_ref(t, 0), engine::face_ref(t, 1), engine::face_ref(t, 2),
+                           engine::face_ref(t, 3)};
+  mesh.tets.set_alive(t, true);
+  const LockGrid grid(points, points.size(), 2);
+  std::atomic<bool> stop{false};
+  ThreadStats stats;
+  LockGridSync sync(mesh, grid, 1, stats, stop);
+  ASSERT_TRUE(sync.acquire(t));
+  sync.before_write(t);
+  const TetId fresh = mesh.tets.allocate();
+  mesh.tets[fresh].vertex = {4, 1, 2, 3};
+  sync.created(fresh);
+  mesh.tets.set_alive(fresh, true);
+  engine::store_neighbor(mesh.tets[t], 0, engine::face_ref(fresh, 0));
+  sync.before_write(t);  // written twice: the first entry wins
+  engine::store_neighbor(mesh.tets[t], 1, engine::face_ref(fresh, 1));
+  mesh.tets.set_alive(t, false);
+  sync.rollback();
+  EXPECT_EQ(mesh.tets[t].neighbor[0], engine::face_ref(t, 0));
+  EXPECT_EQ(mesh.tets[t].neighbor[1], engine::face_ref(t, 1));
+  EXPECT_TRUE(mesh.tets.is_alive(t));
+  EXPECT_FALSE(mesh.tets.is_alive(fresh));
+  for (std::uint32_t cell = 0; cell < 8; ++cell) EXPECT_EQ(grid.word(cell).load(), 0u) << cell;
+}
+
 // Whole runs on grids of 2 and 3 cells per axis, so that the threads meet in cells: the unique
 // mesh with both insertions and the exact kernels, nothing abandoned, the grid reported, and
-// both outcomes of a conflict taken (a wait by a lower id, a give-up by a higher one, which with
-// the flips undoes what the insertion wrote).
+// both outcomes of a conflict taken (a wait by a lower id, a give-up by a higher one; whether a
+// flips give-up had written anything is not counted: the undo itself is the test above).
 TEST(ParallelMethods, LockGridWaitsAndGivesUpAndGivesTheUniqueMesh) {
   std::uint64_t waits = 0;
   std::uint64_t give_ups[2] = {0, 0};
@@ -168,6 +204,25 @@ TEST(ParallelMethods, LockGridRefusesTheDagModeWithTheReason) {
   EXPECT_NE(why->find("DAG children"), std::string::npos) << *why;
   const auto points = generators::generate("uniform", 100, 1).points;
   EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument);
+}
+
+// More than 256 cells per axis (the CLI's bound) is refused through the library too: the cell
+// index would overflow an int beyond 1,290.
+TEST(ParallelMethods, LockGridRefusesMoreThan256CellsPerAxis) {
+  engine::TriangulateOptions options;
+  options.method = Method::LockGrid;
+  options.location = engine::Location::Walk;
+  options.threads = 2;
+  options.lock_grid_cells = 257;
+  const auto points = generators::generate("uniform", 100, 1).points;
+  try {
+    (void)engine::triangulate(points, options);
+    ADD_FAILURE() << "257 cells per axis accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("must be 1 to 256"), std::string::npos) << e.what();
+  }
+  options.lock_grid_cells = 256;
+  EXPECT_EQ(engine::triangulate(points, options).stats.lock_grid_cells, 256u);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // on the worker loop of the optimistic methods; a point given up retries later.
 #include "methods/lock_grid.hpp"
 
+#include <stdexcept>
+
 #include "methods/kernel_dispatch.hpp"
 #include "methods/optimistic_worker.hpp"
 
@@ -15,6 +17,10 @@ std::vector<Tetrahedron> run_lock_grid(const MethodInput& input, TriangulationSt
     // 1M uniform points by cavities took 8.7 s on one thread instead of 7.4 (medians of 3,
     // docs/performance.md).
     ParallelRun<K> run(input, stats, std::max(1, input.options.threads), /*lock_words=*/true);
+    if (input.options.lock_grid_cells > 256) {
+      throw std::invalid_argument(
+          "lock_grid_cells (--grid-cells) must be 1 to 256, or 0 to choose");
+    }
     const int per_axis = input.options.lock_grid_cells > 0
                              ? static_cast<int>(input.options.lock_grid_cells)
                              : LockGrid::cells_per_axis(input.input_count, run.threads);

@@ -5,9 +5,11 @@
 // reading the tetrahedron for change or writing it (the Sync contract, insertion/sync.hpp) and
 // lets them all go when the insertion commits or rolls back. A tetrahedron's vertices do not
 // change while it lives (nor while a reader's epoch holds its slot), so two threads that hold the
-// same tetrahedron would hold the same cells: never at once. The locks are coarse and few: most
-// insertions touch one to a few cells, taken once each, against some 45 compare-and-swaps a point
-// with a word per tetrahedron.
+// same tetrahedron would hold the same cells: never at once. A tetrahedron this insertion created
+// may be written again without the new point's cell: its other finite vertices (two or three)
+// come from acquired tetrahedra, whose cells this thread holds until it commits or rolls back. The
+// locks are coarse and few: most insertions touch one to a few cells, taken once each, against some
+// 45 compare-and-swaps a point with a word per tetrahedron.
 //
 // Waiting without cycles ("wait-die" with fixed priorities): the lower thread id has priority. A
 // thread that finds a cell held by a thread of lower priority waits for it; one that finds it held
