@@ -193,19 +193,6 @@ TEST(ParallelMethods, LockGridChoosesAndReportsItsSize) {
             engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra));
 }
 
-// The lock grid needs the walk mode, and says why.
-TEST(ParallelMethods, LockGridRefusesTheDagModeWithTheReason) {
-  engine::TriangulateOptions options;
-  options.method = Method::LockGrid;
-  options.location = engine::Location::Dag;
-  const auto why = engine::unsupported(options);
-  ASSERT_TRUE(why.has_value());
-  EXPECT_NE(why->find("needs --location walk"), std::string::npos) << *why;
-  EXPECT_NE(why->find("DAG children"), std::string::npos) << *why;
-  const auto points = generators::generate("uniform", 100, 1).points;
-  EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument);
-}
-
 // More than 256 cells per axis (the CLI's bound) is refused through the library too: the cell
 // index would overflow an int beyond 1,290.
 TEST(ParallelMethods, LockGridRefusesMoreThan256CellsPerAxis) {

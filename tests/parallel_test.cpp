@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 
 #include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/repair.hpp"
@@ -837,17 +838,20 @@ TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
   EXPECT_GT(postponed[1], 0u);
 }
 
-// The partitioned method needs the walk mode, and says why.
-TEST(ParallelMethods, PartitionedRefusesTheDagModeWithTheReason) {
-  engine::TriangulateOptions options;
-  options.method = Method::Partitioned;
-  options.location = engine::Location::Dag;
-  const auto why = engine::unsupported(options);
-  ASSERT_TRUE(why.has_value());
-  EXPECT_NE(why->find("needs --location walk"), std::string::npos) << *why;
-  EXPECT_NE(why->find("random order"), std::string::npos) << *why;
+// The partitioned method and the lock grid need the walk mode, and each says why.
+TEST(ParallelMethods, WalkOnlyMethodsRefuseTheDagModeWithTheReason) {
   const auto points = generators::generate("uniform", 100, 1).points;
-  EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument);
+  for (const auto& [method, reason] : {std::pair{Method::Partitioned, "random order"},
+                                       std::pair{Method::LockGrid, "DAG children"}}) {
+    engine::TriangulateOptions options;
+    options.method = method;
+    options.location = engine::Location::Dag;
+    const auto why = engine::unsupported(options);
+    ASSERT_TRUE(why.has_value()) << engine::to_string(method);
+    EXPECT_NE(why->find("needs --location walk"), std::string::npos) << *why;
+    EXPECT_NE(why->find(reason), std::string::npos) << *why;
+    EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument);
+  }
 }
 
 TEST(ParallelMethods, FindCycleConfirmsOnlyRealCycles) {
