@@ -506,9 +506,12 @@ struct Histogram {
 // a random offset; small-integer ties; subnormal ties.
 TEST(StageHistogram, PropertyRunReachesEveryStage) {
   Histogram h;
-  const bool ok = rc::check("every stage answers exactly", [&h] {
+  int case_number = 0;
+  const bool ok = rc::check("every stage answers exactly", [&h, &case_number] {
     const double big = std::ldexp(1.0, *rc::gen::inRange(55, 63));
-    const int family = *rc::gen::inRange(0, 3);
+    // The families take turns: inRange is size-scaled, so a drawn family favoured 0 in the
+    // first cases and a 60-case run (seed 12) never drew the subnormal family at all.
+    const int family = case_number++ % 3;
     if (family == 0) {  // mixed magnitudes: A, B, C, D
       const Point3 a{big, 0, 1}, b{1, big, 0}, c{0, 1, big};
       // dz over the whole range of exponents, from a random start: stages B and C each take a
@@ -586,9 +589,10 @@ TEST(FastKernel, GetsSignsWrongOnSphereAndPlane) {
 // the fast kernel returns 0 (a row expansion of orient3d does not: docs/predicates.md).
 RC_GTEST_PROP(FastKernel, RepeatedArgumentGivesExactZero, ()) {
   auto p = *rc::gen::container<std::vector<Point3>>(5, unit_point());
+  // j is built distinct from i rather than filtered: inRange is size-scaled, so the first cases
+  // all draw 0 and a filter gives up (it did under the ASan suite's 60 cases).
   const int i = *rc::gen::inRange(0, 5);
-  const int j = *rc::gen::inRange(0, 5);
-  RC_PRE(i != j);
+  const int j = (i + *rc::gen::inRange(1, 5)) % 5;
   p[static_cast<std::size_t>(j)] = p[static_cast<std::size_t>(i)];
   RC_ASSERT(FastKernel::insphere(p[0], p[1], p[2], p[3], p[4]) == 0);
   if (i < 4 && j < 4) RC_ASSERT(FastKernel::orient3d(p[0], p[1], p[2], p[3]) == 0);
