@@ -1,8 +1,8 @@
 // bytes -> a point set (small integers times a power of two, as for the triangulate harness, at
 // most 120 points) and then any tetrahedra on it (garbage connectivity: four ids per 4 bytes,
 // taken modulo the point count, repeated and inverted ones included) -> dtlab repair by star
-// splaying. It must end, and equal the engine's exact tetrahedralization (the unique perturbed
-// Delaunay one) when CGAL finds one; when CGAL does not, it must refuse with a
+// splaying. It must end, and equal CGAL's Delaunay tetrahedralization (the unique perturbed one,
+// orientation compared) when CGAL finds one; when CGAL does not, it must refuse with a
 // TriangulationError. Then the same for that tetrahedralization with one tetrahedron dropped (the
 // last byte picks it): a notch at the hull leaves a consistent list, which the repair takes the
 // local path for (docs/design.md, "dtlab repair, locally"), a hole inside does not.
@@ -13,7 +13,7 @@
 
 #include "cgal_reference.hpp"
 #include "dtlab/engine/repair.hpp"
-#include "dtlab/engine/triangulate.hpp"
+#include "dtlab/engine/triangulate.hpp"  // canonical_tetrahedra
 #include "fuzz_input.hpp"
 
 namespace {
@@ -43,7 +43,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto repaired = dtlab::engine::repair(points, tets, stats);
     if (dimension != 3) fail("repaired a point set without a tetrahedralization");
-    const auto delaunay = dtlab::engine::triangulate(points, {}).tetrahedra;
+    // The truth is CGAL's, not the engine's own triangulate.
+    const auto delaunay = dtlab::test::cgal_delaunay(points);
     if (dtlab::engine::canonical_tetrahedra(repaired) !=
         dtlab::engine::canonical_tetrahedra(delaunay)) {
       fail("the repaired mesh is not the Delaunay tetrahedralization");

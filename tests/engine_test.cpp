@@ -268,6 +268,7 @@ TEST(BadInput, AnAuxiliaryTetrahedronBeyondDoubleIsRefused) {
 TEST(FastKernel, FinishesAndTheValidatorReportsItsErrorsExactly) {
   TriangulateOptions options;
   options.kernel = engine::KernelKind::Fast;
+  int compared_with_errors = 0;
   for (const std::string family : {"sphere", "cospherical", "near-duplicates", "grid"}) {
     const auto pts = generators::generate(family, 3000, 2).points;
     const auto r = engine::triangulate(pts, options);
@@ -286,11 +287,15 @@ TEST(FastKernel, FinishesAndTheValidatorReportsItsErrorsExactly) {
     EXPECT_EQ(report.non_manifold_faces, exact.non_manifold_faces) << family;
     EXPECT_EQ(report.interior_faces, exact.interior_faces) << family;
     EXPECT_EQ(report.boundary_faces, exact.boundary_faces) << family;
+    // The recount decides these two only where no tetrahedron is inverted; the families that
+    // took this branch with faces to count are counted, so it cannot be skipped throughout.
     if (exact.non_positive_orientation == 0) {
       EXPECT_EQ(report.inconsistent_faces, exact.inconsistent_faces) << family;
       EXPECT_EQ(report.non_delaunay_faces, exact.non_delaunay_faces) << family;
+      if (exact.non_delaunay_faces > 0) ++compared_with_errors;
     }
   }
+  EXPECT_GE(compared_with_errors, 1) << "no wrong mesh had its face counters compared";
 }
 
 // The validator must fail each broken mesh, for the reason that breaks it.
@@ -353,20 +358,6 @@ TEST(Validator, NonConvexUnionIsCaught) {
   const auto report = engine::validate(p, r.tetrahedra);
   EXPECT_GT(report.reflex_boundary_edges, 0u);
   EXPECT_FALSE(report.valid());
-}
-
-TEST(AuxTet, LosesHullTetrahedraAndSaysHowMany) {
-  TriangulateOptions options;
-  options.bounding = engine::Bounding::AuxTet;
-  const auto points = generators::generate("uniform", 2000, 4).points;
-  const auto r = engine::triangulate(points, options);
-  ASSERT_GE(r.stats.hull_tetrahedra_lost, 0);
-  const auto report = engine::validate(points, r.tetrahedra);
-  EXPECT_EQ(report.non_delaunay_faces, 0u);  // what is kept is Delaunay
-  std::printf("aux-tet on uniform:2000: %lld hull tetrahedra lost\n",
-              static_cast<long long>(r.stats.hull_tetrahedra_lost));
-  // Losing none means the exact result; losing some means the validator sees a non-convex union.
-  EXPECT_EQ(r.stats.hull_tetrahedra_lost == 0, report.valid());
 }
 
 // Neighbour references are 4 * tet + face in 32 bits: the store refuses the 2^30-th slot rather

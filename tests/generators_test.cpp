@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/generators/generators.hpp"
@@ -92,17 +93,28 @@ TEST(Generators, CosphericalIntegerHalfIsExactlyCospherical) {
     radii.insert(dx * dx + dy * dy + dz * dz);
   }
   EXPECT_LE(radii.size(), 4u);
-  // Any 5 of them on one sphere are exactly cospherical for the exact kernel.
+  // Any 5 of them on one sphere are exactly cospherical for the exact kernel: four that span a
+  // tetrahedron (searched for, not assumed) and every other point of that sphere.
   std::vector<Point3> same;
   const double r0 = *radii.begin();
-  for (std::size_t i = 200; i < p.size() && same.size() < 5; ++i) {
+  for (std::size_t i = 200; i < p.size(); ++i) {
     const double dx = p[i].x - 0.5, dy = p[i].y - 0.5, dz = p[i].z - 0.5;
     if (dx * dx + dy * dy + dz * dz == r0) same.push_back(p[i]);
   }
-  ASSERT_EQ(same.size(), 5u);
-  if (predicates::ExactKernel::orient3d(same[0], same[1], same[2], same[3]) != 0) {
-    EXPECT_EQ(predicates::ExactKernel::insphere(same[0], same[1], same[2], same[3], same[4]), 0);
+  ASSERT_GE(same.size(), 5u);
+  std::size_t d = 3;
+  while (d < same.size() &&
+         predicates::ExactKernel::orient3d(same[0], same[1], same[2], same[d]) == 0) {
+    ++d;
   }
+  ASSERT_LT(d, same.size()) << "no four points on the sphere span a tetrahedron";
+  int checked = 0;
+  for (std::size_t e = 3; e < same.size(); ++e) {
+    if (e == d) continue;
+    EXPECT_EQ(predicates::ExactKernel::insphere(same[0], same[1], same[2], same[d], same[e]), 0);
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
 }
 
 TEST(Generators, DegenerateFamiliesHaveTheirDefiningProperty) {
@@ -120,8 +132,18 @@ TEST(Generators, DegenerateFamiliesHaveTheirDefiningProperty) {
     EXPECT_GE(q.x, 0x1p30);
     EXPECT_EQ(q.x, std::floor(q.x));
   }
-  for (const Point3& q : generate("tiny", 100, 1).points) EXPECT_LT(std::fabs(q.x), 1e-149);
-  for (const Point3& q : generate("huge", 100, 1).points) EXPECT_LT(std::fabs(q.x), 1e151);
+  // tiny and huge: the uniform family's points (same seed) times 1e-150 and 1e150, exactly as
+  // the double product rounds them.
+  const auto unit = generate("uniform", 100, 1).points;
+  for (const auto& [family, factor] : {std::pair{"tiny", 1e-150}, std::pair{"huge", 1e150}}) {
+    const auto scaled = generate(family, 100, 1).points;
+    ASSERT_EQ(scaled.size(), unit.size()) << family;
+    for (std::size_t i = 0; i < unit.size(); ++i) {
+      EXPECT_EQ(scaled[i].x, unit[i].x * factor) << family << " " << i;
+      EXPECT_EQ(scaled[i].y, unit[i].y * factor) << family << " " << i;
+      EXPECT_EQ(scaled[i].z, unit[i].z * factor) << family << " " << i;
+    }
+  }
 }
 
 TEST(Generators, BadSpecsAndCounts) {

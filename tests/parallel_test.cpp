@@ -30,6 +30,7 @@
 #include "methods/optimistic_detect.hpp"
 #include "methods/optimistic_prevent.hpp"
 #include "methods/partition_sync.hpp"
+#include "validator_recount.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -344,10 +345,18 @@ TEST(ParallelMethods, BurglaryStaysConsistentAndRepairs) {
     EXPECT_EQ(check.mesh_consistent_after, report.mesh_consistent()) << what;
     EXPECT_EQ(check.non_delaunay_after, report.non_delaunay_faces + report.reflex_boundary_edges)
         << what;
+    // Those show which mesh was checked; an independent recount (GMP signs, a map of faces and a
+    // geometric side test: tests/validator_recount.hpp) shows that the counts are right.
+    const auto recount = test::exact_recount(points, result.tetrahedra);
+    EXPECT_EQ(recount.invalid_tetrahedra + recount.non_positive_orientation +
+                  recount.non_manifold_faces + recount.inconsistent_faces,
+              0u)
+        << what;
+    EXPECT_EQ(check.non_delaunay_faces_after, recount.non_delaunay_faces) << what;
     switch (repair) {
       case engine::Repair::None:
         EXPECT_FALSE(check.repaired) << what;
-        EXPECT_EQ(check.non_delaunay_faces, report.non_delaunay_faces) << what;
+        EXPECT_EQ(check.non_delaunay_faces, recount.non_delaunay_faces) << what;
         break;
       case engine::Repair::Flips:
         EXPECT_TRUE(check.mesh_consistent_after_flips) << what;

@@ -81,6 +81,12 @@ TEST(ValidatorThreads, TheReportDoesNotDependOnTheThreadCount) {
     EXPECT_EQ(one.non_manifold_faces, exact.non_manifold_faces);
     EXPECT_EQ(one.interior_faces, exact.interior_faces);
     EXPECT_EQ(one.boundary_faces, exact.boundary_faces);
+    // The recount decides these two only when no tetrahedron is inverted: on every exactly built
+    // mesh here but the scrambled one (the fast kernel's may have inverted ones, or not), so the
+    // comparison is not skipped by accident.
+    if (m.name.rfind("fast ", 0) != 0) {
+      ASSERT_EQ(exact.non_positive_orientation == 0, m.name != "uniform scrambled");
+    }
     if (exact.non_positive_orientation == 0) {
       EXPECT_EQ(one.inconsistent_faces, exact.inconsistent_faces);
       EXPECT_EQ(one.non_delaunay_faces, exact.non_delaunay_faces);

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "driver/point_transforms.hpp"
 #include "dtlab/engine/methods.hpp"
@@ -226,7 +227,23 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
 }  // namespace
 
 std::vector<Tetrahedron> canonical_tetrahedra(std::vector<Tetrahedron> tets) {
-  for (auto& t : tets) std::sort(t.begin(), t.end());
+  for (auto& t : tets) {
+    // A sorting network for four: each exchange is one transposition, so the count of exchanges
+    // made gives the parity of the permutation that sorted the ids.
+    bool odd = false;
+    const auto order = [&t, &odd](std::size_t i, std::size_t j) {
+      if (t[j] < t[i]) {
+        std::swap(t[i], t[j]);
+        odd = !odd;
+      }
+    };
+    order(0, 1);
+    order(2, 3);
+    order(0, 2);
+    order(1, 3);
+    order(1, 2);
+    if (odd) std::swap(t[2], t[3]);  // back to an even permutation of the ids as given
+  }
   std::sort(tets.begin(), tets.end());
   return tets;
 }

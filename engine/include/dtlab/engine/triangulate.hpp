@@ -36,7 +36,10 @@ Triangulation triangulate(const std::vector<Point3>& points, const TriangulateOp
 // while they are put back: the reordering is undone through a second array).
 Triangulation triangulate(std::vector<Point3>&& points, const TriangulateOptions& options);
 
-// The tetrahedra in a canonical form for comparing meshes: each one's ids sorted, then the list.
+// The tetrahedra in a canonical form for comparing meshes, orientation kept: each one's ids in
+// ascending order when that order is an even permutation of its own, else ascending with the last
+// two swapped; then the list sorted. Two tetrahedra on the same four ids compare equal exactly when
+// they have the same orientation, so an inverted tetrahedron makes two meshes differ.
 std::vector<Tetrahedron> canonical_tetrahedra(std::vector<Tetrahedron> tets);
 
 }  // namespace dtlab::engine
