@@ -236,12 +236,13 @@ int run_triangulate(const TriangulateArgs& args) {
     } else if (s.splay.done) {
       const engine::SplayStats& r = s.splay;
       std::printf(
-          "  repair (star splaying): %llu non-Delaunay faces (%s), %llu bad tetrahedra and %llu "
-          "missing vertices found; %llu seeds, %llu stars splayed, %llu tetrahedra replaced by "
-          "%llu in %.3f s\n",
+          "  repair (star splaying): %llu non-Delaunay faces (%s), %llu bad tetrahedra, %llu "
+          "reflex hull vertices and %llu missing vertices found; %llu seeds, %llu stars splayed, "
+          "%llu tetrahedra replaced by %llu in %.3f s\n",
           static_cast<unsigned long long>(r.non_delaunay_faces),
           r.found_by_post_check ? "the post-check's" : "its exact scan's",
           static_cast<unsigned long long>(r.bad_tetrahedra),
+          static_cast<unsigned long long>(r.reflex_hull_vertices),
           static_cast<unsigned long long>(r.missing_vertices),
           static_cast<unsigned long long>(r.seeds), static_cast<unsigned long long>(r.stars),
           static_cast<unsigned long long>(r.tetrahedra_removed),

@@ -24,12 +24,14 @@
 // the engine's own code) must be refused with a TriangulationError, and any other input must not
 // be: a refusal there, the watchdog's included (a stall), is a failure.
 // Adaptive and filtered (exact): every method gives a sound mesh, every method but burglary
-// without a repair a valid one, no insertion is abandoned, and the paper's flips keep the mesh
-// sound.
+// without a repair a valid one, and that one CGAL's tetrahedra, orientation compared (but after
+// the paper's flips, whose plain insphere test may stop at a Delaunay mesh that only the
+// perturbation rejects); no insertion is abandoned, and the paper's flips keep the mesh sound.
 // Fast: the points are divided by 12 (rounded: nearly degenerate and inexact, where the fast kernel
-// fails); the run must finish (no crash, no hang, only the refusals the fast kernel may make) and
-// the validator's report on whatever it gave must be computed; validity is not required and
-// abandoned insertions are allowed, except after star splaying, which must give a valid mesh.
+// fails); the run must finish (no crash, no hang, only the refusals the fast kernel may make);
+// validity is not required and abandoned insertions are allowed, but the validator's counters on
+// whatever it gave must equal an independent exact recount (tests/validator_recount.hpp: its
+// errors are counted right); after star splaying the mesh must be CGAL's.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -39,6 +41,7 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
 #include "fuzz_input.hpp"
+#include "validator_recount.hpp"
 
 namespace {
 
@@ -115,13 +118,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto result = dtlab::engine::triangulate(points, options);
     if (dimension != 3) fail("triangulated an input without a tetrahedralization");
     const auto report = dtlab::engine::validate(points, result.tetrahedra);
+    const auto cgal_mesh = [&points] {
+      return dtlab::engine::canonical_tetrahedra(dtlab::test::cgal_delaunay(points));
+    };
     if (options.kernel == KernelKind::Fast && !dtlab::engine::splays(options.repair)) {
-      // Only that the report could be computed: the fast kernel may be wrong.
-      (void)report.valid();
+      // The fast kernel may be wrong; the validator must count what is wrong exactly.
+      const auto exact = dtlab::test::exact_recount(points, result.tetrahedra);
+      if (report.invalid_tetrahedra != exact.invalid_tetrahedra ||
+          report.non_positive_orientation != exact.non_positive_orientation ||
+          report.non_manifold_faces != exact.non_manifold_faces ||
+          report.interior_faces != exact.interior_faces ||
+          report.boundary_faces != exact.boundary_faces ||
+          (exact.non_positive_orientation == 0 &&
+           (report.inconsistent_faces != exact.inconsistent_faces ||
+            report.non_delaunay_faces != exact.non_delaunay_faces))) {
+        fail("the validator's counts on the fast kernel's mesh differ from the exact recount");
+      }
       return 0;
     }
     if (dtlab::engine::splays(options.repair)) {
       if (!report.valid()) fail("invalid mesh after star splaying");
+      if (dtlab::engine::canonical_tetrahedra(result.tetrahedra) != cgal_mesh()) {
+        fail("star splaying did not give CGAL's tetrahedra");
+      }
       return 0;
     }
     if (!report.mesh_consistent()) fail("unsound mesh");
@@ -130,6 +149,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                options.repair != dtlab::engine::Repair::None ||
                                options.insertion == dtlab::engine::Insertion::Cavity;
     if (must_be_valid && !report.valid()) fail("invalid mesh");
+    const bool paper_flips = options.method == Method::Burglary &&
+                             options.repair != dtlab::engine::Repair::None &&
+                             !dtlab::engine::splays(options.repair);
+    if (must_be_valid && !paper_flips &&
+        dtlab::engine::canonical_tetrahedra(result.tetrahedra) != cgal_mesh()) {
+      fail("the mesh is not CGAL's tetrahedra");
+    }
     if (result.stats.abandoned_insertions != 0) fail("abandoned insertions");
     const dtlab::engine::PostCheck& check = result.stats.post_check;
     if (check.repaired && !check.mesh_consistent_after_flips) fail("the flips broke the mesh");

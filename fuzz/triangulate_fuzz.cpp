@@ -1,6 +1,7 @@
-// bytes -> point set -> triangulate with adaptive predicates -> must validate (or be refused with
-// a TriangulationError when it has no tetrahedralization: decided by CGAL's dimension,
-// tests/cgal_reference.hpp, not by the engine's own code); the filtered kernel, the walk mode and
+// bytes -> point set -> triangulate with adaptive predicates -> must validate and be CGAL's
+// tetrahedra, orientation compared (or be refused with a TriangulationError when it has no
+// tetrahedralization: decided by CGAL's dimension, tests/cgal_reference.hpp, not by the engine's
+// own code); the filtered kernel, the walk mode and
 // its cavity insertion must give the same tetrahedra (the perturbed Delaunay tetrahedralization
 // is unique), the cavities with none failing their star check.
 #include <algorithm>
@@ -23,9 +24,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto result = dtlab::engine::triangulate(points, options);
     if (dimension != 3) std::abort();  // triangulated something without a tetrahedralization
     if (!dtlab::engine::validate(points, result.tetrahedra).valid()) std::abort();
+    const auto& sorted = dtlab::engine::canonical_tetrahedra;
+    if (sorted(result.tetrahedra) != sorted(dtlab::test::cgal_delaunay(points))) std::abort();
     dtlab::engine::TriangulateOptions filtered = options;
     filtered.kernel = dtlab::engine::KernelKind::Filtered;
-    const auto& sorted = dtlab::engine::canonical_tetrahedra;
     if (sorted(dtlab::engine::triangulate(points, filtered).tetrahedra) !=
         sorted(result.tetrahedra)) {
       std::abort();

@@ -11,6 +11,7 @@
 #include "cgal_reference.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/engine/validator.hpp"
+#include "dtlab/predicates/audit.hpp"
 #include "point_set_gen.hpp"
 #include "validator_recount.hpp"
 
@@ -124,6 +125,26 @@ std::map<std::string, std::pair<int, int>>& fast_failures() {
 int& fast_wrong_faces_compared() {
   static int count = 0;
   return count;
+}
+
+// Predicate calls the GMP stage decided in audited sequential runs (adaptive and filtered) on the
+// wide family: process-wide counters, so counted while no other run is going.
+std::uint64_t& wide_gmp_calls() {
+  static std::uint64_t count = 0;
+  return count;
+}
+void count_gmp_calls(const std::vector<Point3>& points) {
+  for (const KernelKind kernel : {KernelKind::Adaptive, KernelKind::Filtered}) {
+    auto& counters = predicates::audit_counters();
+    counters.reset();
+    engine::TriangulateOptions options;
+    options.kernel = kernel;
+    options.audit = true;
+    (void)engine::triangulate(points, options);
+    for (const auto& predicate : counters.by_stage) {
+      wide_gmp_calls() += predicate[static_cast<int>(predicates::Stage::Gmp)].load();
+    }
+  }
 }
 
 // Burglary runs per family whose repair flips got stuck and needed the rebuild (measured).
@@ -256,11 +277,16 @@ TEST(EngineMatrix, EveryConfigurationOnEveryFamily) {
     for (const Configuration& config : configurations()) {
       check_configuration(config, c, seed, tetrahedralizable, cgal);
     }
+    if (c.family == "wide" && tetrahedralizable) count_gmp_calls(c.points);
   });
   EXPECT_TRUE(passed);
   std::printf("fast kernel: face counters compared with the recount on %d wrong meshes\n",
               fast_wrong_faces_compared());
   EXPECT_GE(fast_wrong_faces_compared(), 1);
+  // The wide family exists to take the adaptive and filtered kernels past their expansions.
+  std::printf("wide family: %llu predicate calls decided by GMP\n",
+              static_cast<unsigned long long>(wide_gmp_calls()));
+  EXPECT_GT(wide_gmp_calls(), 0u);
 }
 
 // The perturbed Delaunay triangulation is unique, so the tetrahedra depend on neither the

@@ -43,6 +43,26 @@ inline rc::Gen<Point3> small_integer_point(int range) {
                       });
 }
 
+// Every integer point on the sphere x^2 + y^2 + z^2 = 125 (around a hundred): any five of them
+// are exactly cospherical, so every insphere call among them is a tie for the perturbation.
+inline const std::vector<Point3>& exact_sphere_points() {
+  static const std::vector<Point3> points = [] {
+    constexpr int r2 = 125;
+    std::vector<Point3> v;
+    for (int x = -11; x <= 11; ++x) {
+      for (int y = -11; y <= 11; ++y) {
+        for (int z = -11; z <= 11; ++z) {
+          if (x * x + y * y + z * z == r2) {
+            v.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)});
+          }
+        }
+      }
+    }
+    return v;
+  }();
+  return points;
+}
+
 // Maps integer points into a family's shape: exact transformations keep the degeneracies (uniform
 // and sphere round on purpose, to be nearly degenerate).
 inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> pts, int salt) {
@@ -69,6 +89,12 @@ inline std::vector<Point3> shape(const std::string& family, std::vector<Point3> 
       // engine's lossless scaling the input leaves the expansion range and the adaptive and
       // filtered kernels must hand undecided calls to GMP. Nearly coplanar on x = 0 besides.
       if (static_cast<int>(p.y) % 3 == 0) p.x = std::ldexp(p.x, -1074);
+    } else if (family == "cospherical") {
+      // Exactly cospherical: the integer point picks one of the sphere's (repeats are
+      // duplicates, which the engine names by their lowest index).
+      const auto& on = exact_sphere_points();
+      const auto pick = static_cast<std::size_t>(p.x * 49 + p.y * 7 + p.z) % on.size();
+      p = on[pick];
     } else if (family == "near-duplicates") {
       // Away from 0 (exact), so that a few ulps either way are normal numbers; point_set_case
       // then adds nudged copies (near_duplicate_copies).
@@ -103,9 +129,9 @@ inline void near_duplicate_copies(std::vector<Point3>& pts, int salt) {
 }
 
 inline const std::vector<std::string>& families() {
-  static const std::vector<std::string> f{"uniform",    "grid",           "planes", "sphere",
-                                          "lattice",    "tiny",           "huge",   "wide",
-                                          "duplicates", "near-duplicates"};
+  static const std::vector<std::string> f{"uniform",     "grid",       "planes",         "sphere",
+                                          "cospherical", "lattice",    "tiny",           "huge",
+                                          "wide",        "duplicates", "near-duplicates"};
   return f;
 }
 

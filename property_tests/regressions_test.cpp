@@ -41,18 +41,40 @@ TEST(Regressions, KeptPointSetsValidate) {
       (void)engine::triangulate(points, fast);  // may be wrong or refuse; must not crash
     } catch (const engine::TriangulationError&) {
     }
-    // The fast kernel then star splaying: valid, for every seed tried (seed 879 once inserted an
-    // exact duplicate as a second vertex; property_fast_splay_inserted_duplicate.xyz).
+    // The fast kernel then star splaying: valid and the exact run's tetrahedra, for every seed
+    // tried, with the DAG and flips, walks and flips, walks and cavities (seed 879 once inserted an
+    // exact duplicate as a second vertex, property_fast_splay_inserted_duplicate.xyz; seed 81 with
+    // walks and cavities once left a hull whose boundary wound twice around two vertices, convex at
+    // every edge, property_fast_splay_reflex_hull_vertex.xyz).
     fast.repair = engine::Repair::Splay;
-    for (const std::uint64_t seed : {1U, 879U}) {
-      fast.seed = seed;
-      try {
-        const auto report = engine::validate(points, engine::triangulate(points, fast).tetrahedra);
-        EXPECT_TRUE(report.valid())
-            << entry.path() << " fast + repair, seed " << seed << report.json();
-      } catch (const engine::TriangulationError& e) {
-        EXPECT_NE(std::string(e.what()).find("flat under this kernel"), std::string::npos)
-            << entry.path() << ": " << e.what();
+    const auto exact = engine::canonical_tetrahedra(engine::triangulate(points, {}).tetrahedra);
+    struct Mode {
+      engine::Location location;
+      engine::Insertion insertion;
+      const char* name;
+    };
+    for (const Mode& mode :
+         {Mode{engine::Location::Dag, engine::Insertion::Flips, "dag/flips"},
+          Mode{engine::Location::Walk, engine::Insertion::Flips, "walk/flips"},
+          Mode{engine::Location::Walk, engine::Insertion::Cavity, "walk/cavity"}}) {
+      fast.location = mode.location;
+      fast.insertion = mode.insertion;
+      for (const std::uint64_t seed : {1U, 80U, 81U, 879U}) {
+        fast.seed = seed;
+        const std::string what = entry.path().string() + " fast + repair, seed " +
+                                 std::to_string(seed) + ", " + mode.name;
+        try {
+          const auto tets = engine::triangulate(points, fast).tetrahedra;
+          const auto report = engine::validate(points, tets);
+          EXPECT_TRUE(report.valid()) << what << report.json();
+          // The same tetrahedra as the exact run's, equal points named by the lowest index
+          // (seed 80 with walks once named a duplicate by its higher index,
+          // property_fast_splay_duplicate_named_lowest.xyz).
+          EXPECT_EQ(engine::canonical_tetrahedra(tets), exact) << what;
+        } catch (const engine::TriangulationError& e) {
+          EXPECT_NE(std::string(e.what()).find("flat under this kernel"), std::string::npos)
+              << what << ": " << e.what();
+        }
       }
     }
     ++replayed;

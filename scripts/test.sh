@@ -76,6 +76,26 @@ run_suite() { # run_suite PRESET BUILD-TARGETS CTEST-REGEX [cmake args...]
 # The predicates' stress test on 3 * 10^6 inputs each instead of 10^7 (176 s of one core on the
 # 2-core CI machine; a plain ctest keeps 10^7).
 run_suite release "" "" -DDTLAB_BUILD_BENCH=ON -DDTLAB_STRESS_CALLS=3000000
+# The RapidCheck properties again with a fresh seed, printed (the suite above always checks the
+# same cases): DTLAB_RC_FRESH_SEED picks it, DTLAB_SKIP_FRESH_SEED=1 skips the run. Each binary
+# counts as one test.
+if [ "${DTLAB_SKIP_FRESH_SEED:-0}" != "1" ]; then
+  t0=$(date +%s)
+  fresh_seed="${DTLAB_RC_FRESH_SEED:-$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}"
+  fresh_params="seed=$fresh_seed max_success=60"
+  fresh_passed=0
+  fresh_failed=0
+  for binary in property_tests/engine_properties property_tests/repair_properties \
+    tests/predicates_test tests/double_word_test tests/cgal_sign_test; do
+    echo "RapidCheck fresh seed $fresh_seed: $binary (reproduce: RC_PARAMS='$fresh_params' build/release/$binary)"
+    if RC_PARAMS="$fresh_params" "build/release/$binary" --gtest_brief=1; then
+      fresh_passed=$((fresh_passed + 1))
+    else
+      fresh_failed=$((fresh_failed + 1))
+    fi
+  done
+  suite_result fresh-seed "$fresh_passed" "$fresh_failed" 0 "$t0"
+fi
 if [ "${DTLAB_SKIP_ASAN:-0}" != "1" ]; then
   # Memory errors, not coverage, are this suite's job: fewer RapidCheck cases.
   # The real models (the full dragon among them) and the studies' --quick runs drive the same

@@ -35,19 +35,20 @@ void write_node(const std::string& path, const std::vector<Point3>& points) {
   file.commit();
 }
 
+std::string format_xyz_line(const Point3& p) {
+  std::string line = format_double(p.x);
+  line += ' ';
+  line += format_double(p.y);
+  line += ' ';
+  line += format_double(p.z);
+  line += '\n';
+  return line;
+}
+
 void write_xyz(const std::string& path, const std::vector<Point3>& points) {
   detail::AtomicFile file(path);
   auto& out = file.stream();
-  std::string line;
-  for (const Point3& p : points) {
-    line = format_double(p.x);
-    line += ' ';
-    line += format_double(p.y);
-    line += ' ';
-    line += format_double(p.z);
-    line += '\n';
-    out << line;
-  }
+  for (const Point3& p : points) out << format_xyz_line(p);
   file.commit();
 }
 

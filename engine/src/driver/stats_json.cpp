@@ -90,6 +90,7 @@ Json splay_json(const SplayStats& r) {
   Json splay;
   put(splay, {{"non_delaunay_faces", r.non_delaunay_faces},
               {"bad_tetrahedra", r.bad_tetrahedra},
+              {"reflex_hull_vertices", r.reflex_hull_vertices},
               {"missing_vertices", r.missing_vertices},
               {"seeds", r.seeds},
               {"live_marks", r.live_marks},

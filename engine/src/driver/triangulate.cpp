@@ -209,7 +209,11 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   const auto finish_start = Clock::now();
   if (as_given == nullptr) prepared.restore();
   const std::vector<Point3>& input = as_given != nullptr ? *as_given : points;
-  prepared.to_input_ids(result.tetrahedra, input, stats.duplicates > 0);
+  // Equal points are named by their lowest input index. The engine's count finds them under an
+  // exact kernel; the fast kernel can miss one (abandon it, or insert it as a second vertex), and
+  // star splaying then keeps whichever copy the mesh had: renamed here too.
+  const bool inexact_repaired = options.kernel == KernelKind::Fast && stats.splay.done;
+  prepared.to_input_ids(result.tetrahedra, input, stats.duplicates > 0 || inexact_repaired);
   stats.seconds.output += std::chrono::duration<double>(Clock::now() - finish_start).count();
   stats.tetrahedra = result.tetrahedra.size();
   // The post-check's validation is a measurement, not part of the method.

@@ -41,6 +41,61 @@ bool distinct_from_all(const std::vector<Point3>& points, const Quad& q, VertexI
   });
 }
 
+// The infinite tetrahedra around the edge from hull vertex v to the vertex at infinity, starting
+// at t, into `ring`; false when the ring does not close within `kLongestRing` steps (a mesh the
+// fast kernel broke).
+bool ring_at_infinity(const SharedMesh& mesh, TetId t, VertexId v, std::vector<TetId>& ring) {
+  constexpr std::size_t kLongestRing = 1 << 16;
+  ring.clear();
+  TetId current = t;
+  TetId previous = kNoTet;
+  while (ring.size() < kLongestRing) {
+    ring.push_back(current);
+    const Tet& tet = mesh.tets[current];
+    TetId next = kNoTet;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const VertexId w = tet.vertex[i];
+      if (w == v || w == kInfiniteVertex) continue;
+      const TetId across = ref_tet(tet.neighbor[i]);
+      if (across != previous) {
+        next = across;
+        break;
+      }
+    }
+    previous = current;
+    current = next;
+    if (current == t) return true;
+    if (current == kNoTet || !mesh.tets[current].is_infinite()) return false;
+  }
+  return false;
+}
+
+// Whether the boundary closes convexly around hull vertex v: no neighbour of v on the boundary
+// lies beyond (is in conflict with) one of v's infinite tetrahedra. Every edge convex, the
+// boundary's link of v is a locally convex spherical polygon; it winds once around v exactly when
+// each of its vertices lies on the inner side of each of its edges' great circles (a polygon that
+// winds twice, a spherical pentagram, has a vertex outside some edge's circle). The ring's vertices
+// go into `around`, to be seeded when the test fails.
+bool convex_around(const SharedMesh& mesh, const std::vector<TetId>& ring, VertexId v,
+                   std::vector<VertexId>& around) {
+  around.clear();
+  for (const TetId r : ring) {
+    for (const VertexId w : mesh.tets[r].vertex) {
+      if (w != v && w != kInfiniteVertex) around.push_back(w);
+    }
+  }
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  for (const TetId r : ring) {
+    const Quad& q = mesh.tets[r].vertex;
+    for (const VertexId w : around) {
+      if (std::find(q.begin(), q.end(), w) != q.end()) continue;
+      if (in_conflict<Exact>(mesh.points, q, w)) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::vector<ScanFindings> exact_scan(const SharedMesh& mesh, const std::vector<TetId>& live,
@@ -49,6 +104,8 @@ std::vector<ScanFindings> exact_scan(const SharedMesh& mesh, const std::vector<T
   std::vector<ScanFindings> findings(static_cast<std::size_t>(std::max(parts, 1)));
   in_parallel_ranges(live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     ScanFindings& found = findings[part];
+    std::vector<TetId> ring;
+    std::vector<VertexId> around;
     auto note_quad = [&](const Quad& q) {
       for (const VertexId v : q) {
         if (v != kInfiniteVertex) found.to_seed.push_back(v);
@@ -89,6 +146,19 @@ std::vector<ScanFindings> exact_scan(const SharedMesh& mesh, const std::vector<T
       if (!t.is_infinite() && !positive) {
         ++found.bad_tetrahedra;
         note_quad(t.vertex);
+      }
+      // An exactly built mesh keeps its hull convex; an inexact one is checked at each hull
+      // vertex, by the lowest of the infinite tetrahedra around it.
+      if (t.is_infinite() && !exact_mesh) {
+        for (const VertexId v : t.vertex) {
+          if (v == kInfiniteVertex) continue;
+          const bool closed = ring_at_infinity(mesh, i, v, ring);
+          if (closed && *std::min_element(ring.begin(), ring.end()) != i) continue;
+          if (closed && convex_around(mesh, ring, v, around)) continue;
+          ++found.reflex_hull_vertices;
+          found.to_seed.push_back(v);
+          if (closed) found.to_seed.insert(found.to_seed.end(), around.begin(), around.end());
+        }
       }
       for (std::size_t f = 0; f < 4; ++f) {
         const TetId other = ref_tet(t.neighbor[f]);

@@ -1,7 +1,8 @@
 #pragma once
 // Star splaying's exact scan of a mesh after a run (splay_repair.cpp): every non-Delaunay face
-// (infinite tetrahedra included: a reflex hull edge) and every flat or inverted finite
-// tetrahedron, whose vertices are the stars' seeds.
+// (infinite tetrahedra included: a reflex hull edge), every flat or inverted finite tetrahedron
+// and, on a mesh not built exactly, every hull vertex whose boundary does not close around it
+// convexly, whose vertices are the stars' seeds.
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,10 @@ struct ScanFindings {
   std::vector<VertexId> to_seed;
   std::uint64_t bad_tetrahedra = 0;
   std::uint64_t non_delaunay_faces = 0;
+  // Hull vertices where a neighbour on the boundary lies beyond one of the vertex's hull faces
+  // (or the ring of infinite tetrahedra around it does not close): convex at every edge, the
+  // boundary can still wind twice around a vertex, which no face test sees.
+  std::uint64_t reflex_hull_vertices = 0;
 };
 
 // The scan of `live` (the listing's order) on `parts` threads, one finding per thread. One side

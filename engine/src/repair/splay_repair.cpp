@@ -90,6 +90,7 @@ class MeshSplay {
     } else {
       for (const ScanFindings& found : exact_scan(mesh_, listed_.ordered, exact_mesh_, parts_)) {
         stats_.bad_tetrahedra += found.bad_tetrahedra;
+        stats_.reflex_hull_vertices += found.reflex_hull_vertices;
         stats_.non_delaunay_faces += found.non_delaunay_faces;
         for (const VertexId v : found.to_seed) seed_[v] = 1;
       }

@@ -96,6 +96,8 @@ struct SplayStats {
   bool done = false;
   std::uint64_t non_delaunay_faces = 0;  // found by the exact scan before splaying
   std::uint64_t bad_tetrahedra = 0;      // flat or inverted finite tetrahedra found by the scan
+  // hull vertices the boundary does not close around convexly (inexact meshes; the scan's)
+  std::uint64_t reflex_hull_vertices = 0;
   std::uint64_t missing_vertices = 0;    // points that were no vertex (abandoned insertions)
   std::uint64_t seeds = 0;               // vertices splayed from the start
   std::uint64_t live_marks = 0;          // burglary's marks that are still live tetrahedra

@@ -40,5 +40,7 @@ int node_index_base(const std::string& path);
 
 // Shortest text that parses back to exactly `v`.
 std::string format_double(double v);
+// One line of a .xyz file as write_xyz writes it: "x y z\n", each by format_double.
+std::string format_xyz_line(const Point3& p);
 
 }  // namespace dtlab::io
