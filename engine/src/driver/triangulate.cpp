@@ -80,7 +80,10 @@ class PreparedPoints {
   // The output's ids from the engine's numbering to the input's.
   void to_input_ids(std::vector<Tetrahedron>& tets, const std::vector<Point3>& input,
                     bool duplicates) const {
-    if (input_index_.empty()) return;
+    if (input_index_.empty()) {  // the DAG mode keeps the input's order
+      if (duplicates) name_duplicates_by_lowest_index(input, tets);
+      return;
+    }
     in_parallel_ranges(tets.size(), threads_, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
         for (auto& v : tets[i]) v = input_index_[v];

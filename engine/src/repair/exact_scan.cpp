@@ -2,6 +2,8 @@
 #include "repair/exact_scan.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 
 #include "dtlab/predicates/kernels.hpp"
 #include "mesh/conflict.hpp"
@@ -41,15 +43,18 @@ bool distinct_from_all(const std::vector<Point3>& points, const Quad& q, VertexI
   });
 }
 
+// Hull vertices with more infinite tetrahedra around them than this are seeded, not tested.
+constexpr std::size_t kTestedHullDegree = 128;
+
 // The infinite tetrahedra around the edge from hull vertex v to the vertex at infinity, starting
-// at t, into `ring`; false when the ring does not close within `kLongestRing` steps (a mesh the
-// fast kernel broke).
-bool ring_at_infinity(const SharedMesh& mesh, TetId t, VertexId v, std::vector<TetId>& ring) {
-  constexpr std::size_t kLongestRing = 1 << 16;
+// at t, into `ring`; false when the ring does not close within `longest` steps (the live
+// tetrahedra's count: a mesh the fast kernel broke).
+bool ring_at_infinity(const SharedMesh& mesh, TetId t, VertexId v, std::vector<TetId>& ring,
+                      std::size_t longest) {
   ring.clear();
   TetId current = t;
   TetId previous = kNoTet;
-  while (ring.size() < kLongestRing) {
+  while (ring.size() < longest) {
     ring.push_back(current);
     const Tet& tet = mesh.tets[current];
     TetId next = kNoTet;
@@ -75,9 +80,11 @@ bool ring_at_infinity(const SharedMesh& mesh, TetId t, VertexId v, std::vector<T
 // boundary's link of v is a locally convex spherical polygon; it winds once around v exactly when
 // each of its vertices lies on the inner side of each of its edges' great circles (a polygon that
 // winds twice, a spherical pentagram, has a vertex outside some edge's circle). The ring's vertices
-// go into `around`, to be seeded when the test fails.
-bool convex_around(const SharedMesh& mesh, const std::vector<TetId>& ring, VertexId v,
-                   std::vector<VertexId>& around) {
+// go into `around`, to be seeded when the test fails. (On a flat stretch of hull the neighbours lie
+// on the faces' planes and the conflict test is the in-circle one: there this is the Delaunay
+// condition of the hull's triangulation, not a proof of a single winding.)
+void collect_around(const SharedMesh& mesh, const std::vector<TetId>& ring, VertexId v,
+                    std::vector<VertexId>& around) {
   around.clear();
   for (const TetId r : ring) {
     for (const VertexId w : mesh.tets[r].vertex) {
@@ -86,6 +93,11 @@ bool convex_around(const SharedMesh& mesh, const std::vector<TetId>& ring, Verte
   }
   std::sort(around.begin(), around.end());
   around.erase(std::unique(around.begin(), around.end()), around.end());
+}
+
+bool convex_around(const SharedMesh& mesh, const std::vector<TetId>& ring, VertexId v,
+                   std::vector<VertexId>& around) {
+  collect_around(mesh, ring, v, around);
   for (const TetId r : ring) {
     const Quad& q = mesh.tets[r].vertex;
     for (const VertexId w : around) {
@@ -102,6 +114,9 @@ std::vector<ScanFindings> exact_scan(const SharedMesh& mesh, const std::vector<T
                                      bool exact_mesh, int parts) {
   const std::vector<Point3>& points = mesh.points;
   std::vector<ScanFindings> findings(static_cast<std::size_t>(std::max(parts, 1)));
+  // Hull vertices checked already (inexact meshes only): the first infinite tetrahedron to reach
+  // one claims it, so each ring is walked and tested once. Relaxed: the flag hands over no data.
+  std::vector<std::atomic<std::uint8_t>> claimed(exact_mesh ? 0 : points.size());
   in_parallel_ranges(live.size(), parts, [&](std::size_t begin, std::size_t end, std::size_t part) {
     ScanFindings& found = findings[part];
     std::vector<TetId> ring;
@@ -147,13 +162,23 @@ std::vector<ScanFindings> exact_scan(const SharedMesh& mesh, const std::vector<T
         ++found.bad_tetrahedra;
         note_quad(t.vertex);
       }
-      // An exactly built mesh keeps its hull convex; an inexact one is checked at each hull
-      // vertex, by the lowest of the infinite tetrahedra around it.
+      // Each hull vertex of an inexact mesh, once. (An exactly built mesh is combinatorially
+      // consistent, burglary's too, so its hull needs no more than the face tests: a reflex hull
+      // edge is a non-Delaunay infinite face. Winding twice around a vertex takes an inexact
+      // kernel's wrong orientations.)
       if (t.is_infinite() && !exact_mesh) {
         for (const VertexId v : t.vertex) {
-          if (v == kInfiniteVertex) continue;
-          const bool closed = ring_at_infinity(mesh, i, v, ring);
-          if (closed && *std::min_element(ring.begin(), ring.end()) != i) continue;
+          if (v == kInfiniteVertex || claimed[v].exchange(1, std::memory_order_relaxed) != 0) {
+            continue;
+          }
+          const bool closed = ring_at_infinity(mesh, i, v, ring, live.size());
+          if (closed && ring.size() > kTestedHullDegree) {
+            // k^2 tests would cost too much: splayed instead, which is always sound.
+            collect_around(mesh, ring, v, around);
+            found.to_seed.push_back(v);
+            found.to_seed.insert(found.to_seed.end(), around.begin(), around.end());
+            continue;
+          }
           if (closed && convex_around(mesh, ring, v, around)) continue;
           ++found.reflex_hull_vertices;
           found.to_seed.push_back(v);
