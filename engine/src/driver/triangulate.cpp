@@ -77,11 +77,14 @@ class PreparedPoints {
     if (!input_index_.empty()) unpermute(points_, input_index_, threads_);
   }
 
-  // The output's ids from the engine's numbering to the input's.
+  // The output's ids from the engine's numbering to the input's, equal points named by their
+  // lowest index: after a walk-mode run with duplicates (its BRIO order renumbered them), and
+  // after star splaying repaired an inexact kernel's mesh, which keeps whichever copy the mesh had
+  // (the DAG mode's input order names an exact kernel's duplicates right already).
   void to_input_ids(std::vector<Tetrahedron>& tets, const std::vector<Point3>& input,
-                    bool duplicates) const {
+                    bool duplicates, bool inexact_repaired) const {
     if (input_index_.empty()) {  // the DAG mode keeps the input's order
-      if (duplicates) name_duplicates_by_lowest_index(input, tets);
+      if (inexact_repaired) name_duplicates_by_lowest_index(input, tets);
       return;
     }
     in_parallel_ranges(tets.size(), threads_, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -89,7 +92,7 @@ class PreparedPoints {
         for (auto& v : tets[i]) v = input_index_[v];
       }
     });
-    if (duplicates) name_duplicates_by_lowest_index(input, tets);
+    if (duplicates || inexact_repaired) name_duplicates_by_lowest_index(input, tets);
   }
 
   [[nodiscard]] std::vector<Point3>& points() { return points_; }
@@ -212,11 +215,11 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   const auto finish_start = Clock::now();
   if (as_given == nullptr) prepared.restore();
   const std::vector<Point3>& input = as_given != nullptr ? *as_given : points;
-  // Equal points are named by their lowest input index. The engine's count finds them under an
-  // exact kernel; the fast kernel can miss one (abandon it, or insert it as a second vertex), and
-  // star splaying then keeps whichever copy the mesh had: renamed here too.
+  // The engine's duplicate count finds equal points under an exact kernel; the fast kernel can
+  // miss one (abandon it, or insert it as a second vertex), and star splaying then keeps whichever
+  // copy the mesh had.
   const bool inexact_repaired = options.kernel == KernelKind::Fast && stats.splay.done;
-  prepared.to_input_ids(result.tetrahedra, input, stats.duplicates > 0 || inexact_repaired);
+  prepared.to_input_ids(result.tetrahedra, input, stats.duplicates > 0, inexact_repaired);
   stats.seconds.output += std::chrono::duration<double>(Clock::now() - finish_start).count();
   stats.tetrahedra = result.tetrahedra.size();
   // The post-check's validation is a measurement, not part of the method.
