@@ -98,9 +98,9 @@ struct SplayStats {
   std::uint64_t bad_tetrahedra = 0;      // flat or inverted finite tetrahedra found by the scan
   // hull vertices the boundary does not close around convexly (inexact meshes; the scan's)
   std::uint64_t reflex_hull_vertices = 0;
-  std::uint64_t missing_vertices = 0;    // points that were no vertex (abandoned insertions)
-  std::uint64_t seeds = 0;               // vertices splayed from the start
-  std::uint64_t live_marks = 0;          // burglary's marks that are still live tetrahedra
+  std::uint64_t missing_vertices = 0;  // points that were no vertex (abandoned insertions)
+  std::uint64_t seeds = 0;             // vertices splayed from the start
+  std::uint64_t live_marks = 0;        // burglary's marks that are still live tetrahedra
   bool marks_seeded = false;  // their vertices were seeds (not when the scan proved the mesh)
   // Burglary's post-check: its validation, before the repair, proved the mesh the unique
   // perturbed Delaunay tetrahedralization (ValidationReport::is_perturbed_delaunay), so nothing
