@@ -71,4 +71,18 @@ inline ExactRecount exact_recount(const std::vector<predicates::Point3>& pts,
   return r;
 }
 
+// Whether the validator's counters equal the recount's: the per-tetrahedron and per-face ones
+// always, the inconsistent and non-Delaunay faces where the recount decides them (no tetrahedron
+// inverted).
+inline bool counters_agree(const engine::ValidationReport& report, const ExactRecount& exact) {
+  const bool always = report.invalid_tetrahedra == exact.invalid_tetrahedra &&
+                      report.non_positive_orientation == exact.non_positive_orientation &&
+                      report.non_manifold_faces == exact.non_manifold_faces &&
+                      report.interior_faces == exact.interior_faces &&
+                      report.boundary_faces == exact.boundary_faces;
+  return always && (exact.non_positive_orientation != 0 ||
+                    (report.inconsistent_faces == exact.inconsistent_faces &&
+                     report.non_delaunay_faces == exact.non_delaunay_faces));
+}
+
 }  // namespace dtlab::test
