@@ -24,7 +24,7 @@ def may_include(text):
     match = re.search(r"May include: ([^\n]*)", text)
     if match is None:
         return None
-    return set(re.findall(r"\b(support|mesh|location|insertion|validate|repair|methods|driver)\b",
+    return set(re.findall(r"\b(support|mesh|location|insertion|validate|repair|methods|output|driver)\b",
                           match.group(1).split("nothing of the engine")[0]))
 
 
@@ -48,7 +48,7 @@ def main():
             if row and row.group(1) in ALLOWED:
                 cell = row.group(2)
                 said = set() if "nothing" in cell else set(
-                    re.findall(r"\b(support|mesh|location|insertion|validate|repair|methods)\b", cell))
+                    re.findall(r"\b(support|mesh|location|insertion|validate|repair|methods|output)\b", cell))
                 if cell.strip() == "everything":
                     said = set(ALLOWED) - {row.group(1)}
                 if said != ALLOWED[row.group(1)]:

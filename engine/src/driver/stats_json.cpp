@@ -175,4 +175,22 @@ std::string stats_json(const TriangulationStats& s, const TriangulateOptions& op
   return j.dump(2);
 }
 
+std::string repair_stats_json(const SplayStats& stats, std::uint64_t points,
+                              std::uint64_t tetrahedra_in, std::uint64_t tetrahedra_out) {
+  Json j;
+  put(j, {{"points", points},
+          {"tetrahedra_in", tetrahedra_in},
+          {"tetrahedra_out", tetrahedra_out},
+          {"local", stats.local},
+          {"non_delaunay_faces", stats.non_delaunay_faces},
+          {"seconds_checking", stats.seconds_checking},
+          {"missing_vertices", stats.missing_vertices},
+          {"stars", stats.stars},
+          {"offers", stats.offers},
+          {"changes", stats.changes},
+          {"bridges", stats.bridges},
+          {"seconds", stats.seconds}});
+  return j.dump(2);
+}
+
 }  // namespace dtlab::engine

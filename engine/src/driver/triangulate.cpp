@@ -15,6 +15,7 @@
 #include "driver/point_transforms.hpp"
 #include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/point_set_info.hpp"
+#include "dtlab/engine/run_monitor.hpp"
 #include "location/insertion_order.hpp"
 #include "location/location_policy.hpp"
 #include "mesh/tet_store.hpp"
@@ -189,6 +190,7 @@ std::int64_t hull_tetrahedra_lost(const std::vector<Point3>& input,
   reference.bounding = Bounding::Infinite;
   reference.audit = false;
   reference.progress = false;
+  reference.monitor = nullptr;
   const auto exact = canonical_tetrahedra(triangulate(input, reference).tetrahedra);
   const auto aux = canonical_tetrahedra(tets);
   std::vector<Tetrahedron> lost;
@@ -204,6 +206,10 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
                                    const std::vector<Point3>* as_given) {
   const auto start = Clock::now();
   if (const auto why = unsupported(options)) throw std::invalid_argument(*why);
+  if (options.monitor != nullptr) {
+    options.monitor->done.store(0, std::memory_order_relaxed);
+    options.monitor->total.store(points.size(), std::memory_order_relaxed);
+  }
   Triangulation result;
   TriangulationStats& stats = result.stats;
   // The steps over whole arrays before the first insertion and after the last run on the
@@ -231,6 +237,7 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
     stats.hull_tetrahedra_lost = hull_tetrahedra_lost(input, options, result.tetrahedra);
   }
   stats.peak_rss_bytes = peak_rss_bytes();
+  if (options.monitor != nullptr) options.monitor->done.store(points.size());
   return result;
 }
 

@@ -125,8 +125,14 @@ class ParallelRun {
   // thrown once `body` has joined its threads.
   template <class Body>
   void watched(Body&& body) {
-    Watchdog watchdog(watchdog_limit_, progress, table.stop);
+    Watchdog watchdog(watchdog_limit_, progress, table.stop, options.monitor);
     body();
+    // A body shorter than the watchdog's period (a partitioned pass) is looked at here.
+    if (options.monitor != nullptr) {
+      options.monitor->done.store(progress.load(), std::memory_order_relaxed);
+      if (options.monitor->cancel.load(std::memory_order_relaxed)) throw RunCancelled();
+    }
+    if (watchdog.cancelled()) throw RunCancelled();
     if (first_error_) std::rethrow_exception(first_error_);
     if (watchdog.fired()) {
       char limit[32];

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "dtlab/engine/run_monitor.hpp"
+#include "dtlab/engine/triangulate.hpp"
 #include "insertion/inserter.hpp"
 #include "location/location_policy.hpp"
 #include "methods/kernel_dispatch.hpp"
@@ -14,11 +16,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The progress bar on stderr (after 2 s) and the monitor's count and cancellation
+// (run_monitor.hpp), looked at every 1024 points.
 class Progress {
  public:
-  Progress(bool enabled, std::size_t total)
-      : enabled_(enabled), total_(total), start_(Clock::now()) {}
+  Progress(bool enabled, RunMonitor* monitor, std::size_t total)
+      : enabled_(enabled), monitor_(monitor), total_(total), start_(Clock::now()) {}
   void update(std::size_t done) {
+    if ((done & 0x3FF) != 0) return;
+    if (monitor_ != nullptr) {
+      monitor_->done.store(done, std::memory_order_relaxed);
+      if (monitor_->cancel.load(std::memory_order_relaxed)) throw RunCancelled();
+    }
     if (!enabled_ || (done & 0x3FFF) != 0) return;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     if (elapsed < 2.0) return;
@@ -29,9 +38,12 @@ class Progress {
   ~Progress() {
     if (shown_) std::fprintf(stderr, "\n");
   }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
 
  private:
   bool enabled_;
+  RunMonitor* monitor_;
   std::size_t total_;
   Clock::time_point start_;
   bool shown_ = false;
@@ -45,7 +57,7 @@ std::vector<Tetrahedron> run_with(const MethodInput& input, TriangulationStats& 
   if (skip_first) stats.inserted += 4;
   // An empty order is the identity (the walk mode stores the points in insertion order).
   const std::size_t count = order.empty() ? input_count : order.size();
-  Progress progress(options.progress, count);
+  Progress progress(options.progress, options.monitor, count);
   for (std::size_t i = 0; i < count; ++i) {
     const auto v = order.empty() ? static_cast<std::uint32_t>(i) : order[i];
     progress.update(i + 1);

@@ -7,14 +7,21 @@
 #include <mutex>
 #include <thread>
 
+#include "dtlab/engine/run_monitor.hpp"
+
 namespace dtlab::engine {
 
 // Stops a run in which no insertion finished for too long: a lost wake-up or an undetected
-// deadlock becomes a reported failure, not a hang.
+// deadlock becomes a reported failure, not a hang. It also carries a RunMonitor's side of the
+// run (run_monitor.hpp): the count of finished insertions out, the cancellation in; the threads
+// then see only `stop`, which they already poll.
 class Watchdog {
  public:
-  Watchdog(double seconds, std::atomic<std::uint64_t>& progress, std::atomic<bool>& stop)
-      : seconds_(seconds), progress_(progress), stop_(stop), thread_([this] { watch(); }) {}
+  Watchdog(double seconds, std::atomic<std::uint64_t>& progress, std::atomic<bool>& stop,
+           RunMonitor* monitor = nullptr)
+      : seconds_(seconds), progress_(progress), stop_(stop), monitor_(monitor), thread_([this] {
+          watch();
+        }) {}
   Watchdog(const Watchdog&) = delete;
   Watchdog& operator=(const Watchdog&) = delete;
   ~Watchdog() {
@@ -26,6 +33,7 @@ class Watchdog {
     thread_.join();
   }
   [[nodiscard]] bool fired() const { return fired_.load(); }
+  [[nodiscard]] bool cancelled() const { return cancelled_.load(); }
 
  private:
   void watch() {
@@ -35,6 +43,14 @@ class Watchdog {
     while (!done_) {
       wake_.wait_for(lock, std::chrono::milliseconds(100));
       const std::uint64_t now = progress_.load();
+      if (monitor_ != nullptr) {
+        monitor_->done.store(now, std::memory_order_relaxed);
+        if (monitor_->cancel.load(std::memory_order_relaxed)) {
+          cancelled_ = true;
+          stop_ = true;
+          return;
+        }
+      }
       if (now != last) {
         last = now;
         last_change = std::chrono::steady_clock::now();
@@ -49,7 +65,9 @@ class Watchdog {
   double seconds_;
   std::atomic<std::uint64_t>& progress_;
   std::atomic<bool>& stop_;
+  RunMonitor* monitor_;
   std::atomic<bool> fired_{false};
+  std::atomic<bool> cancelled_{false};
   std::mutex mutex_;
   std::condition_variable wake_;
   bool done_ = false;

@@ -5,6 +5,8 @@
 
 namespace dtlab::engine {
 
+struct RunMonitor;
+
 enum class KernelKind { Fast, Adaptive, Filtered, Exact };
 // The lock methods of the paper (Sect. 5) and the batch method it described; each is registered
 // with its name and what it supports in methods.hpp.
@@ -88,6 +90,9 @@ struct TriangulateOptions {
   std::uint64_t max_tetrahedra = 0;
   // The repair after the run (Flips and Rebuild: burglary only).
   Repair repair = Repair::None;
+  // Progress published to, and cancellation read from, another thread (run_monitor.hpp); the
+  // caller keeps it alive for the run.
+  RunMonitor* monitor = nullptr;
 };
 
 // The distribution a parallel run uses: options.distribution, with Auto resolved by the location

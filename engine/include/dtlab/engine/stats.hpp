@@ -175,5 +175,8 @@ struct TriangulationStats {
 // The stats and the options as one JSON object (the --stats output).
 std::string stats_json(const TriangulationStats& stats, const TriangulateOptions& options,
                        const std::string& method, int threads);
+// The repair's counts as one JSON object (dtlab repair --stats, dtlab.repair's stats).
+std::string repair_stats_json(const SplayStats& stats, std::uint64_t points,
+                              std::uint64_t tetrahedra_in, std::uint64_t tetrahedra_out);
 
 }  // namespace dtlab::engine

@@ -29,6 +29,12 @@ class TriangulationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A run stopped through options.monitor->cancel: no mesh.
+class RunCancelled : public TriangulationError {
+ public:
+  RunCancelled() : TriangulationError("the run was cancelled") {}
+};
+
 Triangulation triangulate(const std::vector<Point3>& points, const TriangulateOptions& options);
 // The same on points the caller gives up: the engine scales and reorders them in place instead of
 // copying them (24 bytes a point less at the run's peak) and returns them unchanged in
