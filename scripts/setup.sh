@@ -5,9 +5,11 @@ packages=(
   build-essential cmake pkg-config git
   libcgal-dev libboost-dev libgmp-dev libmpfr-dev libtbb-dev
   librapidcheck-dev libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev liblzma-dev
+  nlohmann-json3-dev libcli11-dev liblzma-dev zlib1g-dev
   clang libclang-rt-dev
   python3 python3-matplotlib xz-utils
+  # import dtlab (python/): the binding, its tests, and the readers its files are checked with
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-meshio python3-vtk9
 )
 missing=()
 for p in "${packages[@]}"; do
