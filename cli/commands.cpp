@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "dtlab/engine/face_adjacency.hpp"
 #include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/repair.hpp"
@@ -32,6 +33,41 @@ void write_points(const std::string& path, const std::vector<predicates::Point3>
     io::write_xyz(path, points);
   } else {
     throw std::invalid_argument(path + ": output must end in .xyz or .node");
+  }
+}
+
+// The mesh and the files beside it, as `output` asks. The .vtu gets `cells` as cell arrays.
+void write_mesh(const MeshOutput& output, const std::vector<predicates::Point3>& points,
+                std::vector<engine::Tetrahedron> tets, const std::vector<io::CellArray>& cells) {
+  if (output.path.empty()) return;
+  if (output.canonical) {
+    if (!cells.empty()) {
+      throw std::invalid_argument("--canonical reorders the tetrahedra: not with cell arrays");
+    }
+    tets = engine::canonical_tetrahedra(std::move(tets));
+  }
+  const std::string stem = output.path.substr(0, output.path.size() - 4);
+  if (ends_with(output.path, ".ele")) {
+    io::write_node(stem + ".node", points);
+    io::write_ele(output.path, tets);
+  } else {
+    io::write_vtu(output.path, points, tets, cells, output.vtu);
+  }
+  if (output.neighbors || output.hull) {
+    const engine::FaceAdjacency adjacency = engine::face_adjacency(tets, points.size());
+    if (output.neighbors) io::write_neigh(stem + ".neigh", adjacency.neighbors);
+    if (output.hull) {
+      io::write_face(stem + ".face", adjacency.boundary_faces, adjacency.boundary_face_tetrahedra);
+    }
+  }
+}
+
+void check_mesh_output(const MeshOutput& output) {
+  if (!output.path.empty() && !ends_with(output.path, ".ele") && !ends_with(output.path, ".vtu")) {
+    throw std::invalid_argument(output.path + ": output must end in .ele or .vtu");
+  }
+  if (output.path.empty() && (output.neighbors || output.hull || output.canonical)) {
+    throw std::invalid_argument("--neighbors, --hull and --canonical need -o FILE");
   }
 }
 
@@ -105,8 +141,11 @@ int run_triangulate(const TriangulateArgs& args) {
   if (args.threads < 1 || args.threads > 1024) {
     throw std::invalid_argument("--threads must be in [1, 1024]");
   }
-  if (!args.output.empty() && !ends_with(args.output, ".ele") && !ends_with(args.output, ".vtu")) {
-    throw std::invalid_argument(args.output + ": output must end in .ele or .vtu");
+  check_mesh_output(args.output);
+  if (args.output.canonical && args.validate && ends_with(args.output.path, ".vtu")) {
+    throw std::invalid_argument(
+        "--canonical with --validate -o FILE.vtu: the non_delaunay cell array follows the "
+        "engine's order; write .ele, or validate without --canonical");
   }
   engine::TriangulateOptions options = args.options;
   options.threads = args.threads;
@@ -119,16 +158,11 @@ int run_triangulate(const TriangulateArgs& args) {
   if (args.validate)
     report = engine::validate(points, result.tetrahedra, args.validate_with, engine::kAllThreads);
 
-  if (!args.output.empty()) {
-    if (ends_with(args.output, ".ele")) {
-      io::write_node(args.output.substr(0, args.output.size() - 4) + ".node", points);
-      io::write_ele(args.output, result.tetrahedra);
-    } else {
-      std::vector<io::CellArray> cells;
-      if (report) cells.push_back({"non_delaunay", report->non_delaunay_flags});
-      io::write_vtu(args.output, points, result.tetrahedra, cells);
-    }
+  std::vector<io::CellArray> cells;
+  if (report && ends_with(args.output.path, ".vtu")) {
+    cells.push_back({"non_delaunay", report->non_delaunay_flags});
   }
+  write_mesh(args.output, points, result.tetrahedra, cells);
 
   const std::string method = engine::to_string(args.options.method);
   std::string json = engine::stats_json(result.stats, options, method, args.threads);
@@ -154,13 +188,15 @@ int run_triangulate(const TriangulateArgs& args) {
     const auto& s = result.stats;
     std::printf(
         "triangulated %llu points (%llu inserted, %llu duplicates, %llu abandoned) into "
-        "%llu tetrahedra in %.3f s [%s, %s, %s, seed %llu]\n",
+        "%llu tetrahedra in %.3f s [%s, %s, %s, %s location, %s insertion, seed %llu]\n",
         static_cast<unsigned long long>(s.points), static_cast<unsigned long long>(s.inserted),
         static_cast<unsigned long long>(s.duplicates),
         static_cast<unsigned long long>(s.abandoned_insertions),
         static_cast<unsigned long long>(s.tetrahedra), s.seconds.total,
         engine::to_string(args.options.kernel), engine::to_string(args.options.bounding),
-        method.c_str(), static_cast<unsigned long long>(args.options.seed));
+        method.c_str(), engine::to_string(args.options.location),
+        engine::to_string(args.options.insertion),
+        static_cast<unsigned long long>(args.options.seed));
     std::printf("  time: location %.3f s, subdivision %.3f s, legalization %.3f s, other %.3f s\n",
                 s.seconds.location, s.seconds.subdivision, s.seconds.legalization, s.seconds.other);
     std::printf("  wall: before the first insertion %.3f s, after the last %.3f s\n",
@@ -274,20 +310,25 @@ int run_triangulate(const TriangulateArgs& args) {
 }
 
 int run_validate(const std::string& points_path, const std::string& mesh,
-                 engine::ValidateWith kernel, int threads) {
+                 engine::ValidateWith kernel, int threads, bool any_orientation) {
   const auto points = io::read_points(points_path);
   const int base = io::node_index_base(points_path);
-  const auto tets = io::read_ele(mesh, points.size(), base);
+  auto tets = io::read_ele(mesh, points.size(), base);
+  const std::uint64_t turned = any_orientation ? engine::orient_positively(points, tets) : 0;
   const engine::ValidationReport report = engine::validate(points, tets, kernel, threads);
-  std::cout << report.json() << "\n";
+  if (any_orientation) {
+    auto j = nlohmann::ordered_json::parse(report.json());
+    j["turned_tetrahedra"] = turned;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << report.json() << "\n";
+  }
   return report.valid() ? 0 : 1;
 }
 
-int run_repair(const std::string& points_path, const std::string& mesh, const std::string& output,
+int run_repair(const std::string& points_path, const std::string& mesh, const MeshOutput& output,
                const std::string& stats_path, bool validate, int threads) {
-  if (!output.empty() && !ends_with(output, ".ele") && !ends_with(output, ".vtu")) {
-    throw std::invalid_argument(output + ": output must end in .ele or .vtu");
-  }
+  check_mesh_output(output);
   const auto points = io::read_points(points_path);
   const auto tets = io::read_ele(mesh, points.size(), io::node_index_base(points_path));
   engine::SplayStats stats;
@@ -296,27 +337,9 @@ int run_repair(const std::string& points_path, const std::string& mesh, const st
   if (validate)
     report =
         engine::validate(points, repaired, engine::ValidateWith::Adaptive, engine::kAllThreads);
-  if (!output.empty()) {
-    if (ends_with(output, ".ele")) {
-      io::write_node(output.substr(0, output.size() - 4) + ".node", points);
-      io::write_ele(output, repaired);
-    } else {
-      io::write_vtu(output, points, repaired, {});
-    }
-  }
-  nlohmann::ordered_json j;
-  j["points"] = points.size();
-  j["tetrahedra_in"] = tets.size();
-  j["tetrahedra_out"] = repaired.size();
-  j["local"] = stats.local;
-  j["non_delaunay_faces"] = stats.non_delaunay_faces;
-  j["seconds_checking"] = stats.seconds_checking;
-  j["missing_vertices"] = stats.missing_vertices;
-  j["stars"] = stats.stars;
-  j["offers"] = stats.offers;
-  j["changes"] = stats.changes;
-  j["bridges"] = stats.bridges;
-  j["seconds"] = stats.seconds;
+  write_mesh(output, points, repaired, {});
+  auto j = nlohmann::ordered_json::parse(
+      engine::repair_stats_json(stats, points.size(), tets.size(), repaired.size()));
   if (report) j["validation_valid"] = report->valid();
   if (stats_path == "-") {
     std::cout << j.dump(2) << "\n";

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "dtlab/common/build_info.hpp"
 #include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/experiments/experiment.hpp"
@@ -26,12 +27,38 @@ void add_threads_option(CLI::App* command, int& threads, const char* what) {
       ->check(CLI::Range(1, 1024));
 }
 
+// -o and what goes beside it, for the commands that write a mesh.
+void add_mesh_output_options(CLI::App* command, dtlab::cli::MeshOutput& output) {
+  const std::map<std::string, dtlab::io::VtuEncoding> encodings{
+      {"ascii", dtlab::io::VtuEncoding::Ascii},
+      {"binary", dtlab::io::VtuEncoding::Binary},
+      {"zlib", dtlab::io::VtuEncoding::Zlib}};
+  command->add_option("-o,--output", output.path,
+                      "mesh output: FILE.ele (TetGen; FILE.node beside it) or FILE.vtu (VTK XML)");
+  command
+      ->add_option("--vtu", output.vtu,
+                   "how the .vtu stores its arrays: zlib (default: base64 zlib blocks), binary "
+                   "(base64), ascii; all inline, read by ParaView, VTK and meshio")
+      ->transform(CLI::CheckedTransformer(encodings, CLI::ignore_case));
+  command->add_flag("--neighbors", output.neighbors,
+                    "also write FILE.neigh (TetGen): the tetrahedra across each one's four faces, "
+                    "opposite vertex 0..3, -1 on the hull");
+  command->add_flag("--hull", output.hull,
+                    "also write FILE.face (TetGen): the hull's faces, turned outward, with the "
+                    "tetrahedron behind each");
+  command->add_flag("--canonical", output.canonical,
+                    "write the tetrahedra in a canonical order (each from its smallest vertex, "
+                    "orientation kept, then sorted), so that runs compare with diff");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using dtlab::engine::Bounding;
   using dtlab::engine::KernelKind;
   CLI::App app{"dtlab: a testbed for parallel 3D Delaunay triangulation with robust predicates"};
+  app.set_version_flag("--version", std::string("dtlab ") + dtlab::version() + " (commit " +
+                                        dtlab::build_commit() + ")");
   app.require_subcommand(1);
   const std::map<std::string, KernelKind> kernels{{"fast", KernelKind::Fast},
                                                   {"adaptive", KernelKind::Adaptive},
@@ -56,7 +83,14 @@ int main(int argc, char** argv) {
   info->add_option("--seed", seed, "seed for a generator spec");
 
   dtlab::cli::TriangulateArgs targs;
-  auto* tri = app.add_subcommand("triangulate", "Delaunay tetrahedralization of a point set");
+  // The fastest exact configuration by default (docs/performance.md); --paper for the paper's.
+  targs.options.location = dtlab::engine::Location::Walk;
+  targs.options.insertion = dtlab::engine::Insertion::Cavity;
+  auto* tri = app.add_subcommand(
+      "triangulate",
+      "Delaunay tetrahedralization of a point set. Default: adaptive predicates, walk location, "
+      "cavity insertion, one thread (the fastest exact configuration); --paper: the paper's DAG "
+      "location and flips");
   tri->add_option("INPUT", targs.input, "point file or generator spec")->required();
   tri->add_option("--predicates", targs.options.kernel,
                   "fast | adaptive | filtered | exact (default adaptive). The search for the first "
@@ -109,22 +143,29 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"splay", "flips-splay", "flips", "rebuild"}));
   const std::map<std::string, dtlab::engine::Location> locations{
       {"dag", dtlab::engine::Location::Dag}, {"walk", dtlab::engine::Location::Walk}};
-  tri->add_option("--location", targs.options.location,
-                  "point location: dag (the paper's history DAG, random order) or walk (BRIO + "
-                  "Hilbert order, visibility walk, slots reused)")
-      ->transform(CLI::CheckedTransformer(locations, CLI::ignore_case));
+  auto* location_option =
+      tri->add_option("--location", targs.options.location,
+                      "point location: walk (default: BRIO + Hilbert order, visibility walk, slots "
+                      "reused) or dag (the paper's history DAG, random order)")
+          ->transform(CLI::CheckedTransformer(locations, CLI::ignore_case));
   const std::map<std::string, dtlab::engine::Insertion> insertions{
       {"flips", dtlab::engine::Insertion::Flips}, {"cavity", dtlab::engine::Insertion::Cavity}};
-  tri->add_option("--insertion", targs.options.insertion,
-                  "how a located point enters the mesh: flips (the paper's splits and S23, S32, "
-                  "S22, S44; default) or cavity (Bowyer-Watson: every tetrahedron in conflict "
-                  "replaced at once; --location walk only, every method)")
-      ->transform(CLI::CheckedTransformer(insertions, CLI::ignore_case));
+  auto* insertion_option =
+      tri->add_option("--insertion", targs.options.insertion,
+                      "how a located point enters the mesh: cavity (default: Bowyer-Watson, every "
+                      "tetrahedron in conflict replaced at once; --location walk only, every "
+                      "method) or flips (the paper's splits and S23, S32, S22, S44)")
+          ->transform(CLI::CheckedTransformer(insertions, CLI::ignore_case));
+  bool paper = false;
+  tri->add_flag("--paper", paper,
+                "the paper's configuration: --location dag --insertion flips (Kohout and "
+                "Kolingerova 2003)")
+      ->excludes(location_option)
+      ->excludes(insertion_option);
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
       ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
   tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed");
-  tri->add_option("-o,--output", targs.output,
-                  "mesh output (.ele writes .node beside it, or .vtu)");
+  add_mesh_output_options(tri, targs.output);
   tri->add_option("--stats", targs.stats, "write stats JSON to FILE, or - for stdout");
   tri->add_flag("--validate", targs.validate, "check the result with the exact validator");
   const std::map<std::string, dtlab::engine::ValidateWith> validators{
@@ -152,8 +193,13 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(validators, CLI::ignore_case));
   int validate_threads = dtlab::engine::kAllThreads;
   add_threads_option(validate, validate_threads, "threads that share the checks");
+  bool any_orientation = false;
+  validate->add_flag("--any-orientation", any_orientation,
+                     "accept either orientation (Qhull's and other tools' lists): negative "
+                     "tetrahedra are turned first and counted (turned_tetrahedra); flat ones stay "
+                     "errors");
 
-  std::string repair_output;
+  dtlab::cli::MeshOutput repair_output;
   std::string repair_stats;
   bool repair_validate = false;
   auto* repair_cmd = app.add_subcommand(
@@ -162,7 +208,7 @@ int main(int argc, char** argv) {
       "star splaying with exact predicates");
   repair_cmd->add_option("POINTS", points_path, "the points (.node, .xyz, ...)")->required();
   repair_cmd->add_option("MESH", mesh_path, "the tetrahedra (.ele): any, even wrong")->required();
-  repair_cmd->add_option("-o,--output", repair_output, "the repaired mesh (.ele or .vtu)");
+  add_mesh_output_options(repair_cmd, repair_output);
   repair_cmd->add_option("--stats", repair_stats, "write stats JSON to FILE, or - for stdout");
   repair_cmd->add_flag("--validate", repair_validate, "check the result with the exact validator");
   int repair_threads = dtlab::engine::kAllThreads;
@@ -225,6 +271,13 @@ int main(int argc, char** argv) {
     if (*generate) return dtlab::cli::run_generate(family, count, seed, output);
     if (*info) return dtlab::cli::run_info(input, seed);
     if (*tri) {
+      // The DAG mode inserts by flips only: --location dag alone means the paper's insertion.
+      const bool dag_alone = location_option->count() > 0 && insertion_option->count() == 0 &&
+                             targs.options.location == dtlab::engine::Location::Dag;
+      if (paper || dag_alone) {
+        targs.options.location = dtlab::engine::Location::Dag;
+        targs.options.insertion = dtlab::engine::Insertion::Flips;
+      }
       targs.options.progress = isatty(STDERR_FILENO) != 0;
       targs.options.repair = repair == "splay"         ? dtlab::engine::Repair::Splay
                              : repair == "flips-splay" ? dtlab::engine::Repair::FlipsThenSplay
@@ -234,7 +287,8 @@ int main(int argc, char** argv) {
       return dtlab::cli::run_triangulate(targs);
     }
     if (*validate) {
-      return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel, validate_threads);
+      return dtlab::cli::run_validate(points_path, mesh_path, validate_kernel, validate_threads,
+                                      any_orientation);
     }
     if (*repair_cmd) {
       return dtlab::cli::run_repair(points_path, mesh_path, repair_output, repair_stats,

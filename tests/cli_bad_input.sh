@@ -32,7 +32,9 @@ expect 2 "must end in" -- triangulate "uniform:100" -o "$dir/out.txt"
 # An output path that is a folder with a file in it: the rename fails (it aborted until 2026-11-28).
 mkdir -p "$dir/taken.ele" && touch "$dir/taken.ele/keep"
 expect 2 "cannot rename the finished output into place" -- triangulate "uniform:100" -o "$dir/taken.ele"
-expect 2 "needs --location walk" -- triangulate "uniform:100" --insertion cavity
+expect 2 "needs --location walk" -- triangulate "uniform:100" --location dag --insertion cavity
+expect 2 "--location excludes --paper" -- triangulate "uniform:100" --paper --location walk
+expect 2 "--insertion excludes --paper" -- triangulate "uniform:100" --paper --insertion cavity
 expect 2 "insertion" -- triangulate "uniform:100" --location walk --insertion bowyer
 expect 2 "--predicates: Check nosuch value in {adaptive" -- triangulate "uniform:100" --predicates nosuch
 expect 2 "--predicates: Check nosuch value in {adaptive" -- predicates-audit "uniform:100" --predicates nosuch
@@ -40,7 +42,10 @@ expect 2 "not in {splay,flips-splay,flips,rebuild}" -- triangulate "uniform:100"
 expect 2 "post-check" -- triangulate "uniform:100" --repair=flips
 expect 2 "--watchdog: Value -1 not in range 0" -- triangulate "uniform:100" --watchdog -1
 expect 2 "--grid-cells: Value 0 not in range 1 to 256" -- triangulate "uniform:100" --method lock-grid --location walk --grid-cells 0
-expect 2 "--method lock-grid needs --location walk: its undo log keeps no DAG children" -- triangulate "uniform:100" --method lock-grid
+expect 2 "--method lock-grid needs --location walk: its undo log keeps no DAG children" -- triangulate "uniform:100" --method lock-grid --location dag
+expect 2 "--method partitioned needs --location walk" -- triangulate "uniform:100" --method partitioned --threads 2 --paper
+expect 2 "need -o FILE" -- triangulate "uniform:100" --neighbors
+expect 2 "--vtu: Check" -- triangulate "uniform:100" -o "$dir/x.vtu" --vtu base32
 if ls "$dir"/out.* "$dir"/taken.ele.tmp-* >/dev/null 2>&1; then echo "FAIL: an output file was left behind"; failures=$((failures + 1)); fi
 echo "cli_bad_input: $failures failures"
 [ "$failures" -eq 0 ]

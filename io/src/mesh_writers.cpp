@@ -64,37 +64,34 @@ void write_ele(const std::string& path, const std::vector<Tetrahedron>& tets) {
   file.commit();
 }
 
-void write_vtu(const std::string& path, const std::vector<Point3>& points,
-               const std::vector<Tetrahedron>& tets, const std::vector<CellArray>& cell_data) {
+void write_neigh(const std::string& path,
+                 const std::vector<std::array<std::int32_t, 4>>& neighbors) {
   detail::AtomicFile file(path);
   auto& out = file.stream();
-  out << "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "<UnstructuredGrid>\n<Piece NumberOfPoints=\""
-      << points.size() << "\" NumberOfCells=\"" << tets.size() << "\">\n";
-  out << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Point3& p : points) {
-    out << format_double(p.x) << ' ' << format_double(p.y) << ' ' << format_double(p.z) << '\n';
+  out << "# dtlab neighbours (TetGen .neigh), index base 0: neighbour i is opposite vertex i of "
+         "the "
+         ".ele's tetrahedron, -1 on the hull\n";
+  out << neighbors.size() << " 4\n";
+  for (std::size_t i = 0; i < neighbors.size(); ++i) {
+    const auto& n = neighbors[i];
+    out << i << ' ' << n[0] << ' ' << n[1] << ' ' << n[2] << ' ' << n[3] << '\n';
   }
-  out << "</DataArray>\n</Points>\n<Cells>\n"
-         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (const Tetrahedron& t : tets)
-    out << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
-  out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < tets.size(); ++i) out << 4 * (i + 1) << '\n';
-  out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < tets.size(); ++i) out << "10\n";  // VTK_TETRA
-  out << "</DataArray>\n</Cells>\n";
-  if (!cell_data.empty()) {
-    out << "<CellData>\n";
-    for (const CellArray& array : cell_data) {
-      out << "<DataArray type=\"Int32\" Name=\"" << array.name << "\" format=\"ascii\">\n";
-      for (const std::int32_t v : array.values) out << v << '\n';
-      out << "</DataArray>\n";
-    }
-    out << "</CellData>\n";
+  file.commit();
+}
+
+void write_face(const std::string& path, const std::vector<std::array<std::uint32_t, 3>>& faces,
+                const std::vector<std::uint32_t>& adjacent_tetrahedra) {
+  detail::AtomicFile file(path);
+  auto& out = file.stream();
+  out << "# dtlab hull faces (TetGen .face), index base 0, each turned outward: (b - a) x (c - a) "
+         "points out; marker 1 (boundary); last column: the .ele tetrahedron inside it\n";
+  out << faces.size() << " 1\n";
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const auto& f = faces[i];
+    out << i << ' ' << f[0] << ' ' << f[1] << ' ' << f[2] << " 1";
+    if (i < adjacent_tetrahedra.size()) out << ' ' << adjacent_tetrahedra[i];
+    out << '\n';
   }
-  out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   file.commit();
 }
 

@@ -27,8 +27,21 @@ void write_node(const std::string& path, const std::vector<Point3>& points);
 // Writes the tetrahedra as TetGen .ele, index base 0, vertices referring to the .node.
 void write_ele(const std::string& path, const std::vector<Tetrahedron>& tets);
 void write_xyz(const std::string& path, const std::vector<Point3>& points);
+// How a .vtu's arrays are stored: as text; inline binary (base64 of a 64-bit byte count and the
+// little-endian bytes); or the same with each array zlib-compressed in 32 KiB blocks (VTK's
+// vtkZLibDataCompressor layout). All three are inline, which meshio and VTK's reader both read.
+enum class VtuEncoding { Ascii, Binary, Zlib };
 void write_vtu(const std::string& path, const std::vector<Point3>& points,
-               const std::vector<Tetrahedron>& tets, const std::vector<CellArray>& cell_data);
+               const std::vector<Tetrahedron>& tets, const std::vector<CellArray>& cell_data,
+               VtuEncoding encoding = VtuEncoding::Zlib);
+// TetGen's neighbour file: line i lists the tetrahedra across the faces opposite the four
+// vertices of tetrahedron i, -1 on the hull; index base 0 like the .ele.
+void write_neigh(const std::string& path,
+                 const std::vector<std::array<std::int32_t, 4>>& neighbors);
+// TetGen's face file with the boundary faces (marker 1), and the tetrahedron behind each face as
+// an extra column (TetGen's -nn adds the same).
+void write_face(const std::string& path, const std::vector<std::array<std::uint32_t, 3>>& faces,
+                const std::vector<std::uint32_t>& adjacent_tetrahedra);
 
 // Reads a TetGen .ele (index base 0 or 1, taken from the first tetrahedron's index and the
 // referenced .node's base); returns 0-based vertex ids. `point_count` bounds the ids.
