@@ -43,7 +43,9 @@ TOOLS = {"dtlab": "{}", "dtlab, 2 threads": '{"method": "optimistic-detect", "th
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--inputs", default="uniform:100000,uniform:1000000,grid:1000000")
+    parser.add_argument("--inputs", default="uniform:100000,uniform:1000000,grid:100000")
+    parser.add_argument("--timeout", type=float, default=600,
+                        help="seconds a run may take (scipy on grid:1000000 took over 390 s)")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--out")
     args = parser.parse_args()
@@ -51,8 +53,15 @@ def main():
     for r in range(args.rounds):
         for spec in args.inputs.split(","):
             for name, tool in TOOLS.items():
-                run = subprocess.run([sys.executable, "-c", CHILD, tool, spec, "1" if r == 0 else "0"],
-                                     capture_output=True, text=True)
+                if results.get((spec, name), {}).get("timed_out"):
+                    continue
+                try:
+                    run = subprocess.run([sys.executable, "-c", CHILD, tool, spec,
+                                          "1" if r == 0 else "0"],
+                                         capture_output=True, text=True, timeout=args.timeout)
+                except subprocess.TimeoutExpired:
+                    results[(spec, name)] = {"timed_out": True}
+                    continue
                 if run.returncode != 0:
                     sys.exit(f"{name} on {spec}: {run.stderr}")
                 one = json.loads(run.stdout)
@@ -70,10 +79,13 @@ def main():
              f"{dtlab.__version__}; scipy {__import__('scipy').__version__}; {args.rounds} "
              f"rounds interleaved, medians; seed 1.",
              f"Command: `PYTHONPATH=build/release/python python3 tools/python_vs_scipy.py "
-             f"--inputs {args.inputs} --rounds {args.rounds}`", "",
+             f"--inputs {args.inputs} --rounds {args.rounds} --timeout {args.timeout:.0f}`", "",
              "| input | tool | time (s) | peak memory (MiB) | tetrahedra | exact validator |",
              "|---|---|---:|---:|---:|---|"]
     for (spec, name), e in results.items():
+        if e.get("timed_out"):
+            lines.append(f"| {spec} | {name} | > {args.timeout:.0f} (stopped) | | | |")
+            continue
         verdict = "valid" if e["valid"] else (
             f"invalid: {e['flat']} flat, {e['inconsistent']} inconsistent faces, "
             f"{e['non_delaunay']} non-Delaunay faces")

@@ -1,6 +1,7 @@
 """dtlab.validate, dtlab.repair and dtlab.generate: round trips and their agreement with the CLI."""
 import os
 import subprocess
+import sys
 
 import numpy as np
 from scipy.spatial import Delaunay
@@ -65,3 +66,23 @@ def test_generate_writes_what_the_cli_writes(tmp_path):
         subprocess.run([os.environ["DTLAB_CLI"], "generate", "sphere", "1000", "--seed", "3",
                         "-o", str(path)], check=True, capture_output=True)
         assert np.array_equal(np.loadtxt(path), points)
+
+
+def test_cmake_install_puts_an_importable_package_where_debians_python_looks(tmp_path):
+    build = os.environ.get("DTLAB_BUILD_DIR")
+    if build is None:
+        import pytest
+        pytest.skip("DTLAB_BUILD_DIR names the build tree (ctest sets it)")
+    subprocess.run(["cmake", "--install", build, "--prefix", str(tmp_path)], check=True,
+                   capture_output=True)
+    version = f"python{sys.version_info.major}.{sys.version_info.minor}"
+    site = tmp_path / "lib" / version / "dist-packages"
+    run = subprocess.run([sys.executable, "-c", "import dtlab; print(dtlab.__file__); "
+                          "print(len(dtlab.triangulate(dtlab.generate('uniform', 100)).simplices))"],
+                         env={**os.environ, "PYTHONPATH": str(site)}, cwd=tmp_path,
+                         capture_output=True, text=True, check=True)
+    where, count = run.stdout.split()
+    assert where.startswith(str(site)) and int(count) > 0
+    # the prefix's dist-packages of this python is on Debian's default path for /usr/local
+    if sys.executable == "/usr/bin/python3":
+        assert f"/usr/local/lib/{version}/dist-packages" in sys.path
