@@ -45,7 +45,7 @@ void add_mesh_output_options(CLI::App* command, dtlab::cli::MeshOutput& output) 
                     "opposite vertex 0..3, -1 on the hull");
   command->add_flag("--hull", output.hull,
                     "also write FILE.face (TetGen): the hull's faces, turned outward, with the "
-                    "tetrahedron behind each");
+                    "tetrahedron behind each and -1 outside (TetGen's -nn columns)");
   command->add_flag("--canonical", output.canonical,
                     "write the tetrahedra in a canonical order (each from its smallest vertex, "
                     "orientation kept, then sorted), so that runs compare with diff");
@@ -221,7 +221,8 @@ int main(int argc, char** argv) {
   auto* experiment = app.add_subcommand(
       "experiment",
       "run one study (dtlab experiment --list) and write DIR/NAME.csv, NAME.md, NAME.png and "
-      "machine.json");
+      "machine.json. Each study has its own configurations, written in its table (not "
+      "triangulate's walk-and-cavity default)");
   experiment->add_option("NAME", study, "the study");
   experiment->add_flag("--list", list_studies, "name every study and what it measures");
   experiment->add_option("--out", eopts.out_dir, "output directory");

@@ -101,7 +101,10 @@ if [ "${DTLAB_SKIP_ASAN:-0}" != "1" ]; then
   # The real models (the full dragon among them) and the studies' --quick runs drive the same
   # engine through the CLI on bigger inputs: the release suite runs them; here they took 285 s of
   # the suite's 1,289 s of tests (docs/testing.md).
-  ctest_exclude='^(cli\.real_models|experiment\.quick\..*)$' \
+  # BurglaryStaysConsistentAndRepairs (183 s of this suite's ctest on 2026-11-28, its exact GMP
+  # recounts the most of it): burglary's post-check and repairs stay under ASan in the parallel
+  # fuzz corpus replay and the fuzz run, and the test itself runs in the release suite.
+  ctest_exclude='^(cli\.real_models|experiment\.quick\..*|ParallelMethods\.BurglaryStaysConsistentAndRepairs)$' \
     run_suite asan "" "" "-DDTLAB_RC_PARAMS=seed=20261121 max_success=40"
 fi
 if [ "${DTLAB_SKIP_TSAN:-0}" != "1" ]; then

@@ -1,11 +1,15 @@
 // Readers and writers: bit-exact round trips, every format's variants, every bad-input case.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include <zlib.h>
 
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/mesh_writers.hpp"
@@ -79,6 +83,103 @@ TEST_F(IoTest, VtuHasPointsCellsAndCellData) {
   EXPECT_NE(text.find("NumberOfPoints=\"4\" NumberOfCells=\"1\""), std::string::npos);
   EXPECT_NE(text.find("Name=\"non_delaunay\""), std::string::npos);
   EXPECT_NE(text.find("</VTKFile>"), std::string::npos);
+}
+
+// Base64 decoded by the alphabet's definition (RFC 4648), independently of the writer's encoder.
+std::string from_base64(const std::string& text) {
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  unsigned bits = 0;
+  int count = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    const auto v = alphabet.find(c);
+    if (v == std::string::npos) continue;
+    bits = (bits << 6U) | static_cast<unsigned>(v);
+    count += 6;
+    if (count >= 8) {
+      count -= 8;
+      out.push_back(static_cast<char>((bits >> static_cast<unsigned>(count)) & 0xFFU));
+    }
+  }
+  return out;
+}
+
+// The bytes of the .vtu DataArray whose tag contains `marker`, decoded from the
+// binary layout: one base64 run with a UInt64 byte count (binary), or a base64 header run
+// [blocks, block size, last size, compressed sizes...] and a run of zlib blocks (zlib).
+std::string vtu_array_bytes(const std::string& text, const std::string& marker, bool zlib) {
+  const auto open = text.find('>', text.find(marker)) + 1;
+  const auto close = text.find("</DataArray>", open);
+  std::string body = text.substr(open, close - open);
+  body.erase(std::remove_if(body.begin(), body.end(), [](char c) { return std::isspace(c); }),
+             body.end());
+  if (!zlib) {
+    const std::string raw = from_base64(body);
+    std::uint64_t size = 0;
+    std::memcpy(&size, raw.data(), 8);
+    EXPECT_EQ(size, raw.size() - 8);
+    return raw.substr(8);
+  }
+  std::uint64_t words[3];
+  std::memcpy(words, from_base64(body.substr(0, 32)).data(), 24);  // 24 bytes: 32 characters
+  const std::uint64_t blocks = words[0];
+  const std::size_t header_chars = 4 * ((8 * (3 + blocks) + 2) / 3);
+  const std::string header = from_base64(body.substr(0, header_chars));
+  const std::string data = from_base64(body.substr(header_chars));
+  std::string out;
+  std::size_t at = 0;
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    std::uint64_t compressed = 0;
+    std::memcpy(&compressed, header.data() + 8 * (3 + b), 8);
+    const std::uint64_t expected = b + 1 == blocks ? words[2] : words[1];
+    std::string block(expected, '\0');
+    uLongf size = expected;
+    EXPECT_EQ(uncompress(reinterpret_cast<Bytef*>(block.data()), &size,
+                         reinterpret_cast<const Bytef*>(data.data() + at), compressed),
+              Z_OK);
+    EXPECT_EQ(size, expected);
+    out += block;
+    at += compressed;
+  }
+  EXPECT_EQ(at, data.size());
+  return out;
+}
+
+TEST_F(IoTest, VtuBinaryAndZlibArraysDecodeToTheMesh) {
+  // Enough tetrahedra for several 32 KiB zlib blocks in the connectivity.
+  const auto points = generators::generate("uniform", 3000, 1).points;
+  std::vector<io::Tetrahedron> tets;
+  std::vector<std::int32_t> flags;
+  for (std::uint32_t i = 0; i + 3 < 3000 * 4; ++i) {
+    tets.push_back({i % 3000, (i * 7 + 1) % 3000, (i * 13 + 2) % 3000, (i * 31 + 3) % 3000});
+    flags.push_back(static_cast<std::int32_t>(i % 3));
+  }
+  for (const bool zlib : {false, true}) {
+    io::write_vtu(path("a.vtu"), points, tets, {{"non_delaunay", flags}},
+                  zlib ? io::VtuEncoding::Zlib : io::VtuEncoding::Binary);
+    const std::string text = io::read_file_bytes(path("a.vtu"));
+    EXPECT_EQ(text.find("vtkZLibDataCompressor") != std::string::npos, zlib);
+    const std::string xyz = vtu_array_bytes(text, "NumberOfComponents=\"3\"", zlib);
+    ASSERT_EQ(xyz.size(), points.size() * 24);
+    EXPECT_EQ(std::memcmp(xyz.data(), points.data(), xyz.size()), 0);
+    const std::string ids = vtu_array_bytes(text, "Name=\"connectivity\"", zlib);
+    ASSERT_EQ(ids.size(), tets.size() * 16);  // Int32
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      for (std::size_t j = 0; j < 4; ++j) {
+        std::int32_t v = 0;
+        std::memcpy(&v, ids.data() + 4 * (4 * t + j), 4);
+        ASSERT_EQ(static_cast<std::uint32_t>(v), tets[t][j]);
+      }
+    }
+    const std::string offsets = vtu_array_bytes(text, "Name=\"offsets\"", zlib);
+    std::int32_t last = 0;
+    std::memcpy(&last, offsets.data() + offsets.size() - 4, 4);
+    EXPECT_EQ(last, static_cast<std::int32_t>(4 * tets.size()));
+    const std::string cell = vtu_array_bytes(text, "Name=\"non_delaunay\"", zlib);
+    ASSERT_EQ(cell.size(), flags.size() * 4);
+    EXPECT_EQ(std::memcmp(cell.data(), flags.data(), cell.size()), 0);
+  }
 }
 
 std::string ply_header(const std::string& format, std::size_t n, const std::string& type) {

@@ -84,12 +84,13 @@ void write_face(const std::string& path, const std::vector<std::array<std::uint3
   detail::AtomicFile file(path);
   auto& out = file.stream();
   out << "# dtlab hull faces (TetGen .face), index base 0, each turned outward: (b - a) x (c - a) "
-         "points out; marker 1 (boundary); last column: the .ele tetrahedron inside it\n";
+         "points out; marker 1 (boundary); then the two tetrahedra on the face as TetGen's -nn "
+         "writes them: the .ele tetrahedron inside it, -1 outside\n";
   out << faces.size() << " 1\n";
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const auto& f = faces[i];
     out << i << ' ' << f[0] << ' ' << f[1] << ' ' << f[2] << " 1";
-    if (i < adjacent_tetrahedra.size()) out << ' ' << adjacent_tetrahedra[i];
+    if (i < adjacent_tetrahedra.size()) out << ' ' << adjacent_tetrahedra[i] << " -1";
     out << '\n';
   }
   file.commit();

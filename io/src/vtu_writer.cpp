@@ -165,17 +165,23 @@ void write_vtu(const std::string& path, const std::vector<Point3>& points,
         }
       });
   out << "</Points>\n<Cells>\n";
-  // 32-bit ids and offsets where they fit (always for the ids: 32-bit vertex ids), else 64.
+  // 32-bit ids and offsets where they fit, else 64-bit (VTK's signed types).
+  const bool wide_ids = points.size() > static_cast<std::size_t>(INT32_MAX);
   const bool wide_offsets = 4 * tets.size() > static_cast<std::size_t>(INT32_MAX);
-  data_array(out, "Int32", "connectivity", 1, encoding,
+  data_array(out, wide_ids ? "Int64" : "Int32", "connectivity", 1, encoding,
              [&](std::string& bytes, std::string& text, bool ascii) {
                for (const Tetrahedron& t : tets) {
                  if (ascii) {
                    text += std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' +
                            std::to_string(t[2]) + ' ' + std::to_string(t[3]) + '\n';
                  } else {
-                   for (const std::uint32_t v : t)
-                     append_bytes(bytes, static_cast<std::int32_t>(v));
+                   for (const std::uint32_t v : t) {
+                     if (wide_ids) {
+                       append_bytes(bytes, static_cast<std::int64_t>(v));
+                     } else {
+                       append_bytes(bytes, static_cast<std::int32_t>(v));
+                     }
+                   }
                  }
                }
              });

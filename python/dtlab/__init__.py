@@ -47,7 +47,20 @@ def _points(points, name="points"):
         raise ValueError(f"{name} must hold real numbers (got dtype {array.dtype})")
     if array.ndim != 2 or array.shape[1] != 3:
         raise ValueError(f"{name} must be an (n, 3) array (got shape {array.shape})")
-    return np.ascontiguousarray(array, dtype=np.float64)
+    array = np.ascontiguousarray(array, dtype=np.float64)
+    finite = np.isfinite(array).all(axis=1)
+    if not finite.all():
+        raise ValueError(f"{name} has a NaN or infinite coordinate (row {int(np.argmin(finite))})")
+    return array
+
+
+def _integer(value, name, low, high):
+    """`value` as an int in [low, high], or ValueError."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer (got {value!r})")
+    if not low <= value <= high:
+        raise ValueError(f"{name} must be in [{low}, {high}] (got {value})")
+    return int(value)
 
 
 def _simplices(simplices, point_count):
@@ -55,6 +68,8 @@ def _simplices(simplices, point_count):
         array = np.asarray(simplices)
     except Exception as e:
         raise ValueError(f"simplices must be an (m, 4) integer array: {e}") from None
+    if array.size == 0 and array.ndim <= 2:
+        return np.zeros((0, 4), dtype=np.int64)  # an empty list of tetrahedra
     if array.dtype.kind not in "iu":
         raise ValueError(f"simplices must be an (m, 4) integer array (got dtype {array.dtype})")
     if array.ndim != 2 or array.shape[1] != 4:
@@ -108,12 +123,13 @@ class Triangulation:
 
 
 def triangulate(points, *, predicates="adaptive", method="sequential", threads=1,
-                location="walk", insertion="cavity", seed=1, repair=None, progress=False):
+                location="walk", insertion=None, seed=1, repair=None, progress=False):
     """The Delaunay tetrahedralization of `points`, an (n, 3) array.
 
     A float64 C-contiguous array is read as it is (the engine's one working copy, no
     conversion); anything else is converted first. The defaults are the fastest exact
-    configuration (`dtlab triangulate`'s); location="dag", insertion="flips" is the paper's.
+    configuration (`dtlab triangulate`'s: walk location, cavity insertion); location="dag" is the
+    paper's (its insertion, flips, is the default there, as with the CLI's --location dag).
     predicates  "adaptive" | "filtered" | "exact" (GMP) | "fast" (plain doubles: can fail)
     method      "sequential" or a parallel method (dtlab methods), with `threads` threads
     repair      None, True ("splay": star splaying after the run, exact), "flips-splay", or
@@ -127,12 +143,12 @@ def triangulate(points, *, predicates="adaptive", method="sequential", threads=1
     if repair not in _REPAIRS:
         raise ValueError(f"repair must be None, True or one of splay, flips-splay, flips, "
                          f"rebuild (got {repair!r})")
-    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
-        raise ValueError(f"threads must be an integer (got {threads!r})")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ValueError(f"seed must be a non-negative integer (got {seed!r})")
-    simplices, stats = _dtlab.triangulate(xyz, str(predicates), str(method), int(threads),
-                                          str(location), str(insertion), int(seed),
+    threads = _integer(threads, "threads", 1, 1024)
+    seed = _integer(seed, "seed", 0, 2**64 - 1)
+    if insertion is None:
+        insertion = "flips" if location == "dag" else "cavity"
+    simplices, stats = _dtlab.triangulate(xyz, str(predicates), str(method), threads,
+                                          str(location), str(insertion), seed,
                                           _REPAIRS[repair], progress)
     return Triangulation(xyz, simplices, json.loads(stats))
 
@@ -146,7 +162,8 @@ def validate(points, simplices, oriented=True, *, kernel="adaptive", threads=0):
     """
     xyz = _points(points)
     ids = _simplices(simplices, len(xyz))
-    report, turned = _dtlab.validate(xyz, ids, bool(oriented), str(kernel), int(threads))
+    threads = _integer(threads, "threads", 0, 1024)
+    report, turned = _dtlab.validate(xyz, ids, bool(oriented), str(kernel), threads)
     result = json.loads(report)
     result["turned_tetrahedra"] = turned
     return result
@@ -157,13 +174,15 @@ def repair(points, simplices, *, threads=0):
     splaying with exact predicates. Returns (simplices, stats)."""
     xyz = _points(points)
     ids = _simplices(simplices, len(xyz))
-    repaired, stats = _dtlab.repair(xyz, ids, int(threads))
+    threads = _integer(threads, "threads", 0, 1024)
+    repaired, stats = _dtlab.repair(xyz, ids, threads)
     return repaired, json.loads(stats)
 
 
 def generate(family, n, seed=1):
     """`n` points of a generator family (dtlab.families()), as `dtlab generate` writes them."""
-    return _dtlab.generate(str(family), int(n), int(seed))
+    return _dtlab.generate(str(family), _integer(n, "n", 1, 200_000_000),
+                           _integer(seed, "seed", 0, 2**64 - 1))
 
 
 def families():

@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 
 #include <array>
+#include <climits>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -57,6 +58,13 @@ inline std::vector<engine::Tetrahedron> to_tetrahedra(const IdArray& ids, std::s
 // An (rows, N) int32 array of `rows` std::array<T, N> (int32: scipy's dtype for simplices).
 template <class T, std::size_t N>
 py::array_t<std::int32_t> to_int32_rows(const std::vector<std::array<T, N>>& rows) {
+  for (const auto& row : rows) {
+    for (const T v : row) {
+      if (static_cast<std::int64_t>(v) > INT32_MAX) {
+        throw std::invalid_argument("an id above 2^31 - 1 does not fit the int32 arrays");
+      }
+    }
+  }
   py::array_t<std::int32_t> out(
       {static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(N)});
   std::int32_t* o = out.mutable_data();

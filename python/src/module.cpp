@@ -1,7 +1,7 @@
 // dtlab._dtlab: the engine for Python. The public API, its argument checks and its documentation
 // are in dtlab/__init__.py; this module takes arrays already shaped and typed. The engine's
-// refusals of an input become ValueError with the CLI's message, a cancelled run
-// KeyboardInterrupt.
+// refusals of an input become ValueError with the CLI's message, a run that could not finish
+// (watchdog, store limit) RuntimeError, a cancelled run KeyboardInterrupt.
 #include <pybind11/pybind11.h>
 
 #include <stdexcept>
@@ -23,11 +23,13 @@ PYBIND11_MODULE(_dtlab, m) {
   m.doc() = "dtlab's engine (use the dtlab package, not this module)";
   m.attr("version") = dtlab::version();
   m.attr("commit") = dtlab::build_commit();
-  py::register_exception_translator([](std::exception_ptr p) {
+  py::register_local_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const dtlab::engine::RunCancelled&) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
+    } catch (const dtlab::engine::RunFailed& e) {  // not the input's fault: the run's
+      PyErr_SetString(PyExc_RuntimeError, e.what());
     } catch (const dtlab::engine::TriangulationError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const dtlab::io::InputError& e) {

@@ -51,6 +51,7 @@ class ProgressReport {
   }
   void end() {
     if (drawn_) py::module_::import("sys").attr("stderr").attr("write")(std::string("\n"));
+    drawn_ = false;
   }
 
  private:
@@ -99,6 +100,7 @@ engine::Triangulation run_watched(std::vector<predicates::Point3> points,
       py::error_already_set interrupted;
       monitor.cancel.store(true, std::memory_order_relaxed);
       join();
+      report.end();
       throw interrupted;
     }
     try {
@@ -111,7 +113,10 @@ engine::Triangulation run_watched(std::vector<predicates::Point3> points,
     }
   }
   join();
-  if (failure) std::rethrow_exception(failure);
+  if (failure) {
+    report.end();
+    std::rethrow_exception(failure);
+  }
   report.show(monitor.total.load(), monitor.total.load());
   report.end();
   return std::move(*result);

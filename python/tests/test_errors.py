@@ -57,6 +57,35 @@ def test_wrong_shapes_and_dtypes_raise(points, message):
         dtlab.triangulate(points)
 
 
+def test_non_finite_rows_raise_in_every_function():
+    points = np.random.default_rng(1).random((20, 3))
+    points[4, 2] = np.nan
+    with pytest.raises(ValueError, match=r"NaN or infinite coordinate \(row 4\)"):
+        dtlab.validate(points, [[0, 1, 2, 3]], oriented=False)
+    rows = [np.random.default_rng(2).random((5, 3)) for _ in range(4)]
+    rows[3][1, 0] = np.inf
+    for kernel in ["fast", "adaptive", "filtered", "exact"]:
+        with pytest.raises(ValueError, match="NaN or infinite"):
+            dtlab.predicates.orient3d(*rows, kernel=kernel)
+
+
+def test_thread_counts_and_seeds_out_of_range_raise():
+    points = np.random.default_rng(2).random((10, 3))
+    with pytest.raises(ValueError, match=r"threads must be in \[0, 1024\]"):
+        dtlab.validate(points, [[0, 1, 2, 3]], threads=100000)
+    with pytest.raises(ValueError, match=r"threads must be in \[0, 1024\]"):
+        dtlab.repair(points, [[0, 1, 2, 3]], threads=-1)
+    with pytest.raises(ValueError, match=r"seed must be in \[0, "):
+        dtlab.generate("uniform", 10, seed=-1)
+
+
+def test_an_empty_list_of_tetrahedra_is_validated_not_refused():
+    points = np.random.default_rng(2).random((10, 3))
+    report = dtlab.validate(points, [])
+    assert report["tetrahedra"] == 0 and not report["valid"]
+    assert report["missing_points"] == 10
+
+
 def test_ragged_lists_raise():
     with pytest.raises(ValueError):
         dtlab.triangulate([[0, 0, 0], [1, 0], [0, 1, 0], [0, 0, 1]])
@@ -71,7 +100,9 @@ def test_ragged_lists_raise():
     ({"threads": 2}, "runs on one thread"),
     ({"threads": 0, "method": "pessimistic"}, r"threads must be in \[1, 1024\]"),
     ({"threads": "2"}, "threads must be an integer"),
-    ({"seed": -1}, "seed must be a non-negative integer"),
+    ({"threads": 10**12, "method": "pessimistic"}, r"threads must be in \[1, 1024\]"),
+    ({"seed": -1}, r"seed must be in \[0, "),
+    ({"seed": 2**64}, r"seed must be in \[0, "),
     ({"method": "partitioned", "threads": 2, "location": "dag"}, "walk"),
     ({"repair": "flips"}, "burglary"),
 ])

@@ -60,6 +60,12 @@ def test_every_method_gives_the_same_tetrahedra(uniform_points):
         assert tri.stats["method"] == method and tri.stats["threads"] == 2
 
 
+def test_location_dag_alone_means_the_papers_flips(uniform_points):
+    tri = dtlab.triangulate(uniform_points, location="dag")
+    assert tri.stats["location"] == "dag" and tri.stats["insertion"] == "flips"
+    assert dtlab.triangulate(uniform_points).stats["insertion"] == "cavity"
+
+
 def test_paper_configuration_and_kernels_agree(uniform_points):
     expected = tetrahedra_set(dtlab.triangulate(uniform_points).simplices)
     for predicates in ["adaptive", "filtered", "exact"]:
@@ -69,7 +75,7 @@ def test_paper_configuration_and_kernels_agree(uniform_points):
         assert tri.stats["location"] == "dag" and tri.stats["predicates"] == predicates
 
 
-def test_grid_gives_a_valid_mesh_where_scipys_overlaps(scipy_grid):
+def test_grid_gives_a_valid_mesh_where_scipys_has_flat_tetrahedra(scipy_grid):
     tri = dtlab.triangulate(scipy_grid)
     assert len(tri.simplices) == 24
     assert tri.validate()["valid"]
@@ -77,11 +83,13 @@ def test_grid_gives_a_valid_mesh_where_scipys_overlaps(scipy_grid):
     report = dtlab.validate(scipy_grid, theirs, oriented=False)
     assert len(theirs) == 28
     assert not report["valid"]
-    # Four of scipy's tetrahedra are flat (no orientation turns them positive), and where they
-    # sit two tetrahedra lie on the same side of a shared face: the mesh overlaps itself there.
+    # Four of scipy's tetrahedra are flat: no orientation turns them positive, and the faces
+    # they share with the others are left inconsistent. Their volume is 0, so the other 24 cover
+    # the hull once (no volume counted twice): the four are extra, degenerate simplices.
     assert report["non_positive_orientation"] == 4
     assert report["inconsistent_faces"] > 0
     assert not report["consistent"]
+    assert report["volume_excess"] == 0 and report["probes_covered_twice"] == 0
 
 
 def test_duplicates_are_named_by_their_lowest_index():

@@ -174,8 +174,8 @@ std::vector<Tetrahedron> run_method(PreparedPoints& prepared, const TriangulateO
                                       stats);
   } catch (const StoreFull& e) {
     prepared.restore();
-    throw TriangulationError(std::string(e.what()) + "; " + std::to_string(prepared.input_count()) +
-                             " points need more in this run");
+    throw RunFailed(std::string(e.what()) + "; " + std::to_string(prepared.input_count()) +
+                    " points need more in this run");
   } catch (...) {
     prepared.restore();
     throw;
@@ -237,7 +237,7 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
     stats.hull_tetrahedra_lost = hull_tetrahedra_lost(input, options, result.tetrahedra);
   }
   stats.peak_rss_bytes = peak_rss_bytes();
-  if (options.monitor != nullptr) options.monitor->done.store(points.size());
+  if (options.monitor != nullptr) options.monitor->done.store(options.monitor->total.load());
   return result;
 }
 

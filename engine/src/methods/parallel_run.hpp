@@ -137,8 +137,8 @@ class ParallelRun {
     if (watchdog.fired()) {
       char limit[32];
       std::snprintf(limit, sizeof limit, "%.1f", watchdog_limit_);
-      throw TriangulationError(std::string("watchdog: no insertion finished for ") + limit +
-                               " s; the run was stopped (a deadlock or lost wake-up)");
+      throw RunFailed(std::string("watchdog: no insertion finished for ") + limit +
+                      " s; the run was stopped (a deadlock or lost wake-up)");
     }
   }
   // `threads` threads, each running body(i), joined; an exception leaving body stops the others.

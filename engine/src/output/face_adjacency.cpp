@@ -5,6 +5,7 @@
 #include "dtlab/engine/face_adjacency.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -114,6 +115,11 @@ FaceAdjacency face_adjacency(const std::vector<Tetrahedron>& tets, std::size_t p
 
 std::uint64_t orient_positively(const std::vector<predicates::Point3>& points,
                                 std::vector<Tetrahedron>& tets) {
+  for (const predicates::Point3& p : points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      throw std::invalid_argument("input has a NaN or infinite coordinate");
+    }
+  }
   std::uint64_t turned = 0;
   for (Tetrahedron& t : tets) {
     if (t[0] >= points.size() || t[1] >= points.size() || t[2] >= points.size() ||

@@ -22,13 +22,15 @@ struct FaceAdjacency {
   std::vector<std::uint32_t> boundary_face_tetrahedra;  // the tetrahedron of each boundary face
 };
 
-// Throws std::invalid_argument for a vertex id not below point_count, more than 2^31 - 1
-// tetrahedra, or a face on more than two tetrahedra (no mesh has one).
+// Throws std::invalid_argument for a vertex id not below point_count, more than (2^31 - 1) / 4
+// tetrahedra (a face's slot, tetrahedron * 4 + vertex, is a 32-bit id), or a face on more than
+// two tetrahedra (no mesh has one).
 FaceAdjacency face_adjacency(const std::vector<Tetrahedron>& tets, std::size_t point_count);
 
 // The tetrahedra turned positive where they are negative (two ids swapped), for lists from tools
 // that do not orient theirs (Qhull): flat ones stay as they are, for the validator to count.
-// Decided exactly (adaptive kernel). Returns how many were turned.
+// Decided exactly (adaptive kernel). Returns how many were turned. Throws std::invalid_argument
+// when a point has a NaN or infinite coordinate (no sign is defined there).
 std::uint64_t orient_positively(const std::vector<predicates::Point3>& points,
                                 std::vector<Tetrahedron>& tets);
 

@@ -29,6 +29,13 @@ class TriangulationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The run could not finish on an input that has a tetrahedralization: the watchdog stopped a
+// parallel run, or the tetrahedron store reached its limit. Not a fault of the input.
+class RunFailed : public TriangulationError {
+ public:
+  using TriangulationError::TriangulationError;
+};
+
 // A run stopped through options.monitor->cancel: no mesh.
 class RunCancelled : public TriangulationError {
  public:

@@ -38,8 +38,8 @@ void write_vtu(const std::string& path, const std::vector<Point3>& points,
 // vertices of tetrahedron i, -1 on the hull; index base 0 like the .ele.
 void write_neigh(const std::string& path,
                  const std::vector<std::array<std::int32_t, 4>>& neighbors);
-// TetGen's face file with the boundary faces (marker 1), and the tetrahedron behind each face as
-// an extra column (TetGen's -nn adds the same).
+// TetGen's face file with the boundary faces (marker 1), and the two tetrahedra on each face as
+// TetGen's -nn adds them: the one inside, and -1 for the outside.
 void write_face(const std::string& path, const std::vector<std::array<std::uint32_t, 3>>& faces,
                 const std::vector<std::uint32_t>& adjacent_tetrahedra);
 
