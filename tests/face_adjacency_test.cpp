@@ -18,8 +18,10 @@ const std::vector<Point3> kPoints{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0
 const std::vector<Tetrahedron> kTwo{{0, 1, 2, 3}, {0, 2, 1, 4}};
 
 TEST(FaceAdjacency, NeighbourIsOppositeTheVertex) {
-  ASSERT_GT(dtlab::predicates::ExactKernel::orient3d(kPoints[0], kPoints[1], kPoints[2], kPoints[3]), 0);
-  ASSERT_GT(dtlab::predicates::ExactKernel::orient3d(kPoints[0], kPoints[2], kPoints[1], kPoints[4]), 0);
+  ASSERT_GT(
+      dtlab::predicates::ExactKernel::orient3d(kPoints[0], kPoints[1], kPoints[2], kPoints[3]), 0);
+  ASSERT_GT(
+      dtlab::predicates::ExactKernel::orient3d(kPoints[0], kPoints[2], kPoints[1], kPoints[4]), 0);
   const auto a = dtlab::engine::face_adjacency(kTwo, kPoints.size());
   // The shared face (0, 1, 2) is opposite vertex 3 in the first and 4 in the second.
   EXPECT_EQ(a.neighbors[0], (std::array<std::int32_t, 4>{-1, -1, -1, 1}));

@@ -35,7 +35,8 @@ struct CancelOutcome {
   std::uint64_t total = 0;
 };
 CancelOutcome cancel_midway(TriangulateOptions options, std::size_t n) {
-  const auto points = dtlab::generators::generate("uniform", static_cast<std::int64_t>(n), 1).points;
+  const auto points =
+      dtlab::generators::generate("uniform", static_cast<std::int64_t>(n), 1).points;
   RunMonitor monitor;
   options.monitor = &monitor;
   CancelOutcome outcome;
@@ -63,9 +64,9 @@ TEST(RunMonitor, CancelsTheSequentialRun) {
 }
 
 TEST(RunMonitor, CancelsEveryParallelMethod) {
-  for (const Method method : {Method::Pessimistic, Method::OptimisticDetect,
-                              Method::OptimisticPrevent, Method::Burglary, Method::Batch,
-                              Method::Partitioned, Method::LockGrid}) {
+  for (const Method method :
+       {Method::Pessimistic, Method::OptimisticDetect, Method::OptimisticPrevent, Method::Burglary,
+        Method::Batch, Method::Partitioned, Method::LockGrid}) {
     const CancelOutcome o = cancel_midway(walk_options(method, 2), 400000);
     EXPECT_TRUE(o.cancelled) << dtlab::engine::to_string(method);
     EXPECT_LT(o.done_when_cancelled, o.total) << dtlab::engine::to_string(method);
