@@ -701,7 +701,7 @@ TEST(ParallelMethods, LocationIsMeasuredForPessimisticAndBatch) {
 // interleaved from the three shares; starting each walk where its last insertion created (or at
 // the hint) took 3.9 to 4.1 times the sequential walk's steps here (6.4 times at 1M points),
 // starting from the insertion of the same locating thread's previous point about 1.5 times
-// (docs/performance.md).
+// (docs/performance-log.md).
 TEST(ParallelMethods, BatchWalkModeFillsItsQueueAndKeepsItsWalksShort) {
   const auto points = generators::generate("uniform", 50000, 3).points;
   engine::TriangulateOptions sequential_options;

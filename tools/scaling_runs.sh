@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Thread scaling on a machine with enough cores (the lent 16-core machine; docs/performance.md):
+# Thread scaling on a machine with enough cores (the lent 16-core machine; docs/performance-log.md):
 #  1. bench/cgal_compare over the thread counts: the sequential walk, every lock method in walk mode
 #     and CGAL (sequential and parallel at the same thread count), interleaved, medians of 3;
 #  2. burglary, then star splaying (--repair), per insertion, thread count and seed: the run's

@@ -29,7 +29,7 @@ struct Located {
 // per kPush points pushed and kTake points taken, and a locating thread that finds the queue full
 // sleeps until a take leaves it half empty (all sleepers are woken then, and each has room for its
 // points): taken once per point, with a wake-up at every point taken from a full queue, the lock
-// and the wake-ups cost the inserting thread more than the queue saved it (docs/performance.md,
+// and the wake-ups cost the inserting thread more than the queue saved it (docs/performance-log.md,
 // the batch method).
 class BatchQueue {
  public:

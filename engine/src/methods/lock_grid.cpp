@@ -15,7 +15,7 @@ std::vector<Tetrahedron> run_lock_grid(const MethodInput& input, TriangulationSt
     // The store keeps a word a slot for the aliveness bit alone (nobody owns it: the cells are
     // the locks), read with the record's cache line: against a byte array beside the records,
     // 1M uniform points by cavities took 8.7 s on one thread instead of 7.4 (medians of 3,
-    // docs/performance.md).
+    // docs/performance-log.md).
     ParallelRun<K> run(input, stats, std::max(1, input.options.threads), /*lock_words=*/true);
     if (input.options.lock_grid_cells > 256) {
       throw std::invalid_argument(
