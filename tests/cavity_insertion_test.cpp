@@ -156,7 +156,8 @@ void expect_open_boundary_changes_no_live_record(bool shared) {
   engine::NoSync sync;
   engine::EpochDomain domain(1);
   engine::SlotReclaimer reclaimer(domain, 0);
-  engine::SlotAllocator slots(mesh.tets, /*recycle=*/true, shared ? &reclaimer : nullptr);
+  engine::SlotAllocator slots(mesh.tets, /*recycle=*/true, shared ? &reclaimer : nullptr,
+                              /*track_attempts=*/false);
   Replacement replacement(mesh, sync, slots, /*keep_dag=*/false);
   slots.begin_insertion();
   // The first tetrahedron (positive: the unit simplex) and its four infinite neighbours.

@@ -58,8 +58,7 @@ TEST(ParallelMethods, LockGridSyncHoldsCellsAndWaitsOnlyForHigherIds) {
   const std::vector<Point3> points{{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0, 0, 0.1}, {1, 1, 1}};
   engine::SharedMesh mesh(points);
   mesh.tets.keep_children(false);
-  mesh.tets.keep_lock_words(false);
-  mesh.tets.keep_alive_flags(true);
+  mesh.tets.keep_lock_words(true);  // as the method's store: the aliveness bit in the word
   const TetId near = mesh.tets.allocate();
   mesh.tets[near].vertex = {0, 1, 2, engine::kInfiniteVertex};  // cell 0 alone
   const TetId far = mesh.tets.allocate();

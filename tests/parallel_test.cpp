@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -754,31 +755,35 @@ struct LockFixture {
 
 // A chain of registered waits is a deadlock only while every thread on it still waits and every
 // lock waited for is still held by the next thread.
-// The partitioned method's cuts: at the quantiles (j + phase) / parts of the keys, the last part
-// wrapping from the curve's end to its start; one part takes every key.
-TEST(ParallelMethods, CurvePartitionCutsAtQuantilesAndWraps) {
+// The partitioned method's cuts: at the quantiles j / parts of the keys, each part one run of
+// the curve (no wrap from its end to its start); one part takes every key.
+TEST(ParallelMethods, CurvePartitionCutsAtQuantilesIntoRuns) {
   std::vector<std::uint64_t> keys(100);
-  for (std::uint64_t i = 0; i < keys.size(); ++i) keys[i] = 10 * i;
+  for (std::uint64_t i = 0; i < keys.size(); ++i) keys[i] = 10 * i + 5;
   engine::CurvePartition partition;
-  partition.cut(keys, 4, 0.0);
+  partition.cut(keys, 4);
   EXPECT_EQ(std::vector<std::uint64_t>(partition.cuts().begin(), partition.cuts().end()),
-            (std::vector<std::uint64_t>{0, 250, 500, 750}));
-  EXPECT_EQ(partition.part_of(0), 0);
-  EXPECT_EQ(partition.part_of(249), 0);
-  EXPECT_EQ(partition.part_of(250), 1);
-  EXPECT_EQ(partition.part_of(990), 3);
-  partition.cut(keys, 4, 0.5);  // cuts at positions 12, 37, 62, 87
-  EXPECT_EQ(std::vector<std::uint64_t>(partition.cuts().begin(), partition.cuts().end()),
-            (std::vector<std::uint64_t>{120, 370, 620, 870}));
-  EXPECT_EQ(partition.part_of(50), 3);  // below the first cut: the last part's wrap
-  EXPECT_EQ(partition.part_of(120), 0);
-  EXPECT_EQ(partition.part_of(900), 3);
-  // Each part gets a quarter of the keys.
+            (std::vector<std::uint64_t>{255, 505, 755}));
+  EXPECT_EQ(partition.part_of(0), 0);  // below every key: the first part, not the last
+  EXPECT_EQ(partition.part_of(254), 0);
+  EXPECT_EQ(partition.part_of(255), 1);
+  EXPECT_EQ(partition.part_of(504), 1);
+  EXPECT_EQ(partition.part_of(505), 2);
+  EXPECT_EQ(partition.part_of(755), 3);
+  EXPECT_EQ(partition.part_of(~std::uint64_t{0}), 3);
+  // Each part gets a quarter of the keys, and a part's keys are one run.
   std::vector<int> count(4, 0);
-  for (const std::uint64_t k : keys) ++count[static_cast<std::size_t>(partition.part_of(k))];
+  int previous = 0;
+  for (const std::uint64_t k : keys) {
+    const int part = partition.part_of(k);
+    EXPECT_GE(part, previous);
+    previous = part;
+    ++count[static_cast<std::size_t>(part)];
+  }
   EXPECT_EQ(count, (std::vector<int>{25, 25, 25, 25}));
-  partition.cut(keys, 1, 0.3);
+  partition.cut(keys, 1);
   EXPECT_EQ(partition.parts(), 1);
+  EXPECT_TRUE(partition.cuts().empty());
   EXPECT_EQ(partition.part_of(990), 0);
 }
 
@@ -789,7 +794,6 @@ TEST(ParallelMethods, PartitionSyncOwnsOnlyTetrahedraOfItsPart) {
   engine::SharedMesh mesh(points);
   mesh.tets.keep_children(false);
   mesh.tets.keep_lock_words(false);
-  mesh.tets.keep_alive_flags(true);
   const TetId t = mesh.tets.allocate();
   mesh.tets[t].vertex = {0, 1, 2, 3};
   std::vector<std::uint8_t> part_of{0, 0, 0, 1};
@@ -810,13 +814,82 @@ TEST(ParallelMethods, PartitionSyncOwnsOnlyTetrahedraOfItsPart) {
   EXPECT_FALSE(sync.acquire(t));
 }
 
+// What a thread of the partitioned method may read: a tetrahedron with a finite vertex of its part
+// (no other part owns it), and the walk crosses only a face with a finite vertex of its part; a
+// pass of one part reads and crosses everything.
+TEST(ParallelMethods, PartitionSyncReadsOnlyWhatNoOtherPartWrites) {
+  const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  engine::SharedMesh mesh(points);
+  mesh.tets.keep_children(false);
+  mesh.tets.keep_lock_words(false);
+  engine::Tet tet;
+  tet.vertex = {0, 1, 2, 3};
+  const std::vector<std::uint8_t> part_of{0, 1, 1, 1};
+  engine::PartitionSync sync(mesh, part_of);
+  static_assert(engine::kConfinedReads<engine::PartitionSync>);
+  static_assert(!engine::kConfinedReads<engine::NoSync>);
+  sync.set_part(0, false);
+  EXPECT_TRUE(sync.confined());
+  EXPECT_TRUE(sync.readable(tet));       // vertex 0 is part 0's
+  EXPECT_FALSE(sync.may_cross(tet, 0));  // face 1 2 3: part 1's alone
+  for (int f = 1; f < 4; ++f) EXPECT_TRUE(sync.may_cross(tet, f)) << f;  // each has vertex 0
+  sync.set_part(1, false);
+  EXPECT_TRUE(sync.readable(tet));
+  for (int f = 0; f < 4; ++f) EXPECT_TRUE(sync.may_cross(tet, f)) << f;
+  sync.set_part(2, false);
+  EXPECT_FALSE(sync.readable(tet));
+  for (int f = 0; f < 4; ++f) EXPECT_FALSE(sync.may_cross(tet, f)) << f;
+  // The vertex at infinity is nobody's vertex: a face of it and two part-1 vertices is part 1's.
+  tet.vertex = {0, 1, 2, engine::kInfiniteVertex};
+  sync.set_part(0, false);
+  EXPECT_FALSE(sync.may_cross(tet, 0));  // 1 2 inf
+  EXPECT_TRUE(sync.may_cross(tet, 3));   // 0 2 1
+  sync.set_part(2, true);
+  EXPECT_FALSE(sync.confined());
+  EXPECT_TRUE(sync.readable(tet));
+  EXPECT_TRUE(sync.may_cross(tet, 0));
+}
+
+// The partitioned method's store keeps aliveness in the record (death overwrites the last vertex),
+// so its rollback brings back the last vertex with the references, and marks what the attempt
+// created dead.
+TEST(ParallelMethods, PartitionRollbackRestoresTheRecordsAliveness) {
+  const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  engine::SharedMesh mesh(points);
+  mesh.tets.keep_children(false);
+  mesh.tets.keep_lock_words(false);
+  ASSERT_TRUE(mesh.tets.alive_in_record());
+  const TetId old = mesh.tets.allocate();
+  mesh.tets[old].vertex = {0, 1, 2, 3};
+  mesh.tets[old].neighbor = {1, 2, 3, 4};
+  ASSERT_TRUE(mesh.tets.is_alive(old));
+  const std::vector<std::uint8_t> part_of(points.size(), 0);
+  engine::PartitionSync sync(mesh, part_of);
+  sync.set_part(0, false);
+  ASSERT_TRUE(sync.acquire(old));
+  sync.before_write(old);
+  const TetId fresh = mesh.tets.allocate();
+  mesh.tets[fresh].vertex = {0, 1, 2, 4};
+  sync.created(fresh);
+  engine::store_neighbor(mesh.tets[old], 2, engine::face_ref(fresh, 3));
+  mesh.tets.set_alive(old, false);
+  ASSERT_FALSE(mesh.tets.is_alive(old));
+  ASSERT_TRUE(mesh.tets.is_alive(fresh));
+  sync.rollback();
+  EXPECT_TRUE(mesh.tets.is_alive(old));
+  EXPECT_EQ(mesh.tets[old].vertex, (engine::Quad{0, 1, 2, 3}));
+  EXPECT_EQ(mesh.tets[old].neighbor, (std::array<engine::FaceRef, 4>{1, 2, 3, 4}));
+  EXPECT_FALSE(mesh.tets.is_alive(fresh));
+}
+
 // The partitioned method on small inputs cut into parts of 16 points, so that passes run on
 // several threads and insertions reach other parts: the unique mesh with both insertions and the
 // exact kernels, nothing abandoned, every postponed point inserted by a later pass (the last pass
 // postpones none), and the postponement taken with both insertions (for the flips that is an
-// undo when the refusal comes after a write).
+// undo when the refusal comes after a write), some of them by walks stopped at a part's border.
 TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
   std::uint64_t postponed[2] = {0, 0};
+  std::uint64_t stopped_walks[2] = {0, 0};
   std::uint64_t parallel_passes = 0;
   for (const std::string family : {"uniform", "grid", "sphere", "cospherical", "duplicates"}) {
     const auto points = generators::generate(family, 700, 4).points;
@@ -844,8 +917,13 @@ TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
           for (const engine::PartitionPass& pass : passes) {
             EXPECT_LE(pass.parts, static_cast<std::uint64_t>(threads)) << what;
             EXPECT_LE(pass.postponed, pass.points) << what;
+            EXPECT_LE(pass.stopped_walks, pass.postponed) << what;
             if (pass.parts > 1) ++parallel_passes;
+            if (pass.parts == 1) {
+              EXPECT_EQ(pass.stopped_walks, 0u) << what;
+            }
             postponed[insertion == engine::Insertion::Cavity ? 1 : 0] += pass.postponed;
+            stopped_walks[insertion == engine::Insertion::Cavity ? 1 : 0] += pass.stopped_walks;
           }
         }
       }
@@ -854,6 +932,8 @@ TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
   EXPECT_GT(parallel_passes, 0u);
   EXPECT_GT(postponed[0], 0u);
   EXPECT_GT(postponed[1], 0u);
+  EXPECT_GT(stopped_walks[0], 0u);
+  EXPECT_GT(stopped_walks[1], 0u);
 }
 
 // The partitioned method and the lock grid need the walk mode, and each says why.

@@ -51,6 +51,7 @@ void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
     put(one, {{"points", p.points},
               {"parts", p.parts},
               {"postponed", p.postponed},
+              {"stopped_walks", p.stopped_walks},
               {"seconds", p.seconds},
               {"imbalance", p.imbalance}});
     list.push_back(one);

@@ -20,13 +20,17 @@
 //
 // Locks: every tetrahedron is locked before it is tested (the cavity's are then replaced, the
 // boundary's outside neighbours get new references), and nothing is written before the search
-// and the checks end, so a refused lock gives the insertion up with nothing to undo.
+// and the checks end, so a refused lock gives the insertion up with nothing to undo. A policy
+// that confines its thread's reads (sync.hpp; the partitioned method's) is asked only for the
+// cavity's tetrahedra: the outside neighbours' back references are atomic stores into
+// tetrahedra no other thread writes, across faces no other thread crosses.
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "insertion/cavity_face.hpp"
 #include "insertion/epoch_table.hpp"
+#include "insertion/sync.hpp"
 #include "mesh/mesh_geometry.hpp"
 #include "mesh/shared_mesh.hpp"
 #include "mesh/tet_store.hpp"
@@ -43,7 +47,8 @@ class CavitySearch {
       : mesh_(mesh), geometry_(geometry), sync_(sync), verify_star_(verify_star) {}
 
   // The cavity of p from live tetrahedron t, which contains p and is locked (when there are
-  // locks). Done: cavity() and boundary() hold it, every tetrahedron in either locked. GaveUp: a
+  // locks). Done: cavity() and boundary() hold it, every tetrahedron in either locked (a confined
+  // policy's: the cavity's only). GaveUp: a
   // lock was refused. NotStar: t is not in conflict, or a new tetrahedron would not be positive
   // (checked with verify_star only).
   Grown grow(TetId t, VertexId p) {
@@ -63,9 +68,20 @@ class CavitySearch {
         // one starts from an empty table.
         auto [in_conflict, untested] = in_cavity_.find_or_insert(n, false);
         if (untested) {
-          if (!sync_.acquire(n)) return Grown::GaveUp;
-          *in_conflict = geometry_.in_conflict(mesh_.tets[n], p);
-          if (*in_conflict) enter(n);
+          if constexpr (kConfinedReads<Sync>) {
+            // A confined thread may read n (across a face of its own tetrahedron) and asks only
+            // for the cavity's: an outside tetrahedron just gets a back reference, written
+            // atomically, which no other thread follows (the face has none of its vertices).
+            *in_conflict = geometry_.in_conflict(mesh_.tets[n], p);
+            if (*in_conflict) {
+              if (!sync_.acquire(n)) return Grown::GaveUp;
+              enter(n);
+            }
+          } else {
+            if (!sync_.acquire(n)) return Grown::GaveUp;
+            *in_conflict = geometry_.in_conflict(mesh_.tets[n], p);
+            if (*in_conflict) enter(n);
+          }
         }
         if (!*in_conflict) add_boundary({s, f, out});
       }

@@ -70,7 +70,7 @@ class IncrementalDelaunay : public LawsonPass<K, Sync> {
   explicit IncrementalDelaunay(Args&&... args)
       : Base(std::forward<Args>(args)...),
         locator_(mesh_, options_, geometry_, location_.locator, recycle_, !this->owns_mesh(),
-                 Sync::kLocks),
+                 Sync::kLocks, confinement()),
         cavity_search_(mesh_, geometry_, *sync_, verify_cavities(options_)),
         cavity_(options_.insertion == Insertion::Cavity && recycle_) {}
 
@@ -149,6 +149,9 @@ class IncrementalDelaunay : public LawsonPass<K, Sync> {
     // Also when the leaf's lock was refused: a given-up attempt's location is still work done.
     stats_.seconds.location += PhaseClock::seconds(t0, t1);
     if (refused) return give_up();
+    if constexpr (kConfinedReads<Sync>) {
+      if (t == kNoTet && locator_.blocked()) return give_up();  // for a later pass
+    }
     if (t == kNoTet) {
       // With other threads rolling back under the descent, try the point again later.
       if constexpr (Sync::kLocks) {
@@ -225,6 +228,9 @@ class IncrementalDelaunay : public LawsonPass<K, Sync> {
 
  public:
   [[nodiscard]] std::uint64_t location_steps() const { return locator_.location_steps(); }
+  // The last insertion gave up because its confined walk stopped at a face it may not cross (or
+  // had no readable start).
+  [[nodiscard]] bool walk_stopped() const { return locator_.blocked(); }
   [[nodiscard]] std::uint64_t walk_fallbacks() const { return locator_.walk_fallbacks(); }
 
  private:
@@ -303,6 +309,16 @@ class IncrementalDelaunay : public LawsonPass<K, Sync> {
     return std::nullopt;
   }
 
+  // What the walk asks before it crosses a face: the policy, where it confines the reads.
+  const ReadConfinement<Sync>& confinement() const {
+    if constexpr (kConfinedReads<Sync>) {
+      return *sync_;
+    } else {
+      static constexpr Unconfined kAnywhere{};
+      return kAnywhere;
+    }
+  }
+
   // The fast kernel can contradict itself: its cavities are checked (cavity_search.hpp).
   static bool verify_cavities(const TriangulateOptions& options) {
     return options.check_cavities || options.kernel == KernelKind::Fast;
@@ -373,7 +389,7 @@ class IncrementalDelaunay : public LawsonPass<K, Sync> {
     return Outcome::Inserted;
   }
 
-  PointLocator<K> locator_;
+  PointLocator<K, ReadConfinement<Sync>> locator_;
   CavitySearch<K, Sync> cavity_search_;
   bool cavity_;  // Bowyer-Watson insertion (slot reuse only: no DAG to keep)
   std::vector<std::pair<VertexId, VertexId>> duplicates_;  // (skipped point, its vertex)

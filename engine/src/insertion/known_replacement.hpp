@@ -117,7 +117,8 @@ class KnownReplacement : public GenericReplacement<Sync> {
     std::array<TetId, N> ids{};
     for (std::size_t j = 0; j < N; ++j) ids[j] = commit_.allocate();
     // The new records: their slots are this thread's and unpublished (fresh, or reused after
-    // their grace period), so nobody reads them before the outside's references below.
+    // their grace period or, for a confined thread, at once), so nobody reads them before the
+    // outside's references below.
     for (std::size_t j = 0; j < N; ++j) {
       // Written in place, field by field: a record assembled on the stack from 4-byte stores and
       // copied with 16-byte loads stalled on store forwarding.

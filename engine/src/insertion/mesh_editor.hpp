@@ -38,9 +38,10 @@ class MeshEditor {
     mesh_.tets.keep_lock_words(Sync::kLocks);
   }
   // One thread of a parallel method, or a pass after the run, on a shared mesh. With a reclaimer
-  // the thread reuses dead slots where the location mode does (slot_reclaimer.hpp); without one
-  // (the post-check's flips) it keeps every slot and writes the DAG children where the store
-  // keeps them.
+  // the thread reuses dead slots where the location mode does (slot_reclaimer.hpp), as does a
+  // thread whose policy confines its reads (sync.hpp: nobody else can reach its dead slots);
+  // otherwise (the post-check's flips) it keeps every slot and writes the DAG children where the
+  // store keeps them.
   MeshEditor(SharedMesh& mesh, const TriangulateOptions& options, TriangulationStats& stats,
              Sync& sync, SlotReclaimer* reclaimer = nullptr)
       : MeshEditor(nullptr, &mesh, options, stats, &sync, reclaimer) {}
@@ -77,9 +78,10 @@ class MeshEditor {
         stats_(stats),
         sync_(policy(sync)),
         location_(resolve_location(options.location)),
-        recycle_(location_.slot_reuse && (owned_ != nullptr || reclaimer != nullptr)),
+        recycle_(location_.slot_reuse &&
+                 (owned_ != nullptr || reclaimer != nullptr || kConfinedReads<Sync>)),
         geometry_(mesh_),
-        slots_(mesh_.tets, recycle_, reclaimer),
+        slots_(mesh_.tets, recycle_, reclaimer, /*track_attempts=*/Sync::kLocks),
         replacement_(mesh_, *sync_, slots_, !recycle_) {
     PhaseClock::calibrate();  // here, not inside the first insertion's phases
   }

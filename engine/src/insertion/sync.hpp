@@ -15,6 +15,9 @@
 // The inserter calls them in this order per insertion: acquire for the located tetrahedron, then
 // acquire for every tetrahedron a replacement reads or writes, before_write for each before the
 // first write, created and killed as the replacement commits, then commit or rollback.
+// A policy may also confine its thread's reads (the partitioned method's):
+// mesh/read_confinement.hpp.
+#include "mesh/read_confinement.hpp"
 #include "mesh/tet_store.hpp"
 
 namespace dtlab::engine {

@@ -44,10 +44,11 @@ class TetReplacement : public KnownReplacement<Sync> {
   //
   // The new records are written into their slots as the edges pair up, with no scratch copy:
   // the slots are this thread's, unpublished (nothing references them, and a reused one's grace
-  // period is over), so writing them changes nothing anyone can see. Only then is the pairing
-  // checked; an impossible one gives the slots back. The outside's references to the new
-  // tetrahedra, the deaths and the births come after the check, as in commit_replacement.
-  // `cavity` lists the tetrahedra replaced (the search's own list, read in place).
+  // period is over, or nobody else can reach it: mesh/read_confinement.hpp), so writing them
+  // changes nothing anyone can see. Only then is the pairing checked; an impossible one gives the
+  // slots back. The outside's references to the new tetrahedra, the deaths and the births come
+  // after the check, as in commit_replacement. `cavity` lists the tetrahedra replaced (the search's
+  // own list, read in place).
   Replaced replace_cavity(VertexId p, std::span<const CavityFace> boundary,
                           std::span<const TetId> cavity) {
     assert(!commit_.history());
@@ -89,9 +90,9 @@ class TetReplacement : public KnownReplacement<Sync> {
       scratch_created_.clear();
       return Replaced::Impossible;
     }
-    // The search locked every tetrahedron written from here on, and nothing after this write can
-    // be refused: no undo log, and the new and dead tetrahedra stay out of the lists that only a
-    // rollback reads.
+    // The search locked every tetrahedron written from here on (a confined policy's outside
+    // neighbours excepted: cavity_search.hpp), and nothing after this write can be refused: no
+    // undo log, and the new and dead tetrahedra stay out of the lists that only a rollback reads.
     for (std::size_t j = 0; j < n; ++j) commit_.created(ids[j], /*last_write=*/true);
     // Publishing: the outside's references to the complete new records (release).
     for (std::size_t j = 0; j < n; ++j) {

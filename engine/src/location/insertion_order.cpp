@@ -64,12 +64,12 @@ namespace {
 
 constexpr unsigned kBits = 21;
 
-// A coordinate's cell on the 2^21 grid over [lo, lo + extent].
-std::uint32_t cell(double c, double lo, double extent) {
+// A coordinate's cell on the 2^bits grid over [lo, lo + extent].
+std::uint32_t cell(double c, double lo, double extent, unsigned bits = kBits) {
   if (!(extent > 0)) return 0;
-  const double scaled = (c - lo) / extent * static_cast<double>((1u << kBits) - 1);
-  return static_cast<std::uint32_t>(
-      std::clamp(scaled, 0.0, static_cast<double>((1u << kBits) - 1)));
+  const double top = static_cast<double>((1u << bits) - 1);
+  const double scaled = (c - lo) / extent * top;
+  return static_cast<std::uint32_t>(std::clamp(scaled, 0.0, top));
 }
 
 // Points are asked for this far ahead of use.
@@ -115,9 +115,11 @@ HilbertFrame hilbert_frame(const std::vector<predicates::Point3>& points, std::s
   return curve_frame(points, nullptr, std::min(count, points.size()), threads);
 }
 
-std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p) {
-  return hilbert_key(cell(p.x, frame.lo.x, frame.extent), cell(p.y, frame.lo.y, frame.extent),
-                     cell(p.z, frame.lo.z, frame.extent), kBits);
+std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p,
+                             unsigned bits) {
+  return hilbert_key(cell(p.x, frame.lo.x, frame.extent, bits),
+                     cell(p.y, frame.lo.y, frame.extent, bits),
+                     cell(p.z, frame.lo.z, frame.extent, bits), bits);
 }
 
 void brio_hilbert_order(const std::vector<predicates::Point3>& points,

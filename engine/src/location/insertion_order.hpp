@@ -33,8 +33,10 @@ struct HilbertFrame {
 // The cube around the first `count` points, as brio_hilbert_order takes it for its points.
 HilbertFrame hilbert_frame(const std::vector<predicates::Point3>& points, std::size_t count,
                            int threads = 1);
-// p's key on the curve through `frame` (a point outside the cube takes its nearest cell).
-std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p);
+// p's key on the curve of a 2^bits grid through `frame` (a point outside the cube takes its
+// nearest cell; bits <= 21, the walk mode's order's).
+std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p,
+                             unsigned bits = 21);
 
 inline constexpr std::size_t kFirstRound = 256;
 

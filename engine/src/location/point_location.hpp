@@ -2,7 +2,8 @@
 // Point location: the paper's descent of the history DAG, and the walk mode's visibility walk
 // (docs/design.md, "Walk mode"). locate() returns a live tetrahedron that contains p, or kNoTet,
 // with `o` the four orientations of p against it (what the subdivision needs). One object per
-// inserting thread; it reads the shared mesh without locks.
+// inserting thread; it reads the shared mesh without locks. Templated on the thread's read
+// confinement (mesh/read_confinement.hpp): a confined walk stops at a face it may not cross.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -11,12 +12,13 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "location/location_policy.hpp"
 #include "mesh/mesh_geometry.hpp"
+#include "mesh/read_confinement.hpp"
 #include "mesh/shared_mesh.hpp"
 #include "mesh/tet_store.hpp"
 
 namespace dtlab::engine {
 
-template <class K>
+template <class K, class Confinement = Unconfined>
 class PointLocator {
  public:
   // locator: the DAG's descent or the walk (location_policy.hpp); recycle: dead slots are reused
@@ -24,10 +26,12 @@ class PointLocator {
   // does not contain p is retried (with threads a rollback can race it), instead of reported at
   // once.
   PointLocator(SharedMesh& mesh, const TriangulateOptions& options, MeshGeometry<K>& geometry,
-               Locator locator, bool recycle, bool shared, bool retry_on_miss)
+               Locator locator, bool recycle, bool shared, bool retry_on_miss,
+               const Confinement& confinement)
       : mesh_(mesh),
         options_(options),
         geometry_(geometry),
+        confinement_(confinement),
         walk_(locator == Locator::Walk),
         recycle_(recycle),
         shared_(shared),
@@ -42,6 +46,9 @@ class PointLocator {
 
   [[nodiscard]] std::uint64_t location_steps() const { return location_steps_; }
   [[nodiscard]] std::uint64_t walk_fallbacks() const { return walk_fallbacks_; }
+  // The last locate() returned kNoTet because a confined walk met a face it may not cross (or
+  // had no readable start): the point is for a later pass, not a failed location.
+  [[nodiscard]] bool blocked() const { return blocked_; }
 
   // Descends the history DAG from the roots (or from a batch hint) to the live tetrahedron that
   // contains p. With other threads writing, a node can be retired by a rollback under the reader
@@ -61,7 +68,9 @@ class PointLocator {
 
  private:
   // Walk mode. The owning (sequential) engine walks from the tetrahedron its last insertion
-  // created, which is alive, over live tetrahedra only: the walk's answer is final.
+  // created, which is alive, over live tetrahedra only: the walk's answer is final (locate_alone).
+  // A confined thread (the partitioned method's) reads only tetrahedra no other thread writes, so
+  // its answer is final too, or the walk stops where it would leave them (locate_confined).
   // On a shared mesh other threads change the tetrahedra under the walk. With slot reuse (the
   // parallel walk mode) the walk starts from a tetrahedron it has just seen alive, inside an
   // epoch-protected operation: every slot it then reaches was alive at some moment of the
@@ -71,10 +80,16 @@ class PointLocator {
   // still alive; a live tetrahedron cannot have changed its vertices since the walk read them.
   // Without slot reuse on a store that keeps the DAG, a walk that ends in a dead tetrahedron
   // descends the DAG below it, or from the roots when it failed. (The walk mode's stores keep no
-  // DAG; its only engine without a reclaimer, the post-check's, never locates.)
+  // DAG; its engines without a reclaimer are the owning one, the confined threads', and the
+  // post-check's, which never locates.)
   TetId locate_by_walk(VertexId p, std::array<int, 4>& o) {
     TetId start = hint_ != kNoTet ? hint_ : walk_start_;
     hint_ = kNoTet;
+    if constexpr (kConfinedReads<Confinement>) {
+      blocked_ = false;
+      if (confinement_.confined()) return locate_confined(p, o, start);
+      return locate_alone(p, o, start);  // a pass of one part: nobody else writes
+    }
     if (recycle_ && shared_) {
       auto alive = [&](TetId t) {
         return t != kNoTet && mesh_.tets.is_alive(t, std::memory_order_acquire);
@@ -91,15 +106,7 @@ class PointLocator {
       }
       return kNoTet;
     }
-    if (recycle_) {
-      if (start == kNoTet || !mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
-        start = any_live_tetrahedron();
-      }
-      const TetId t = walk(p, o, start);
-      if (t != kNoTet) return t;
-      ++walk_fallbacks_;  // an inexact kernel's cycle: test every live tetrahedron
-      return scan_for(p, o);
-    }
+    if (recycle_) return locate_alone(p, o, start);
     if (start == kNoTet) start = mesh_.roots.front();
     for (int attempt = 0; attempt < 64; ++attempt) {
       TetId reached = walk(p, o, start);
@@ -118,12 +125,40 @@ class PointLocator {
     return kNoTet;
   }
 
+  // Nobody else writes the mesh: one walk, and the last resorts of a walk that fails (an inexact
+  // kernel's cycle): some live tetrahedron to start from, every live one tested.
+  TetId locate_alone(VertexId p, std::array<int, 4>& o, TetId start) {
+    if (start == kNoTet || !mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
+      start = any_live_tetrahedron();
+    }
+    const TetId t = walk(p, o, start);
+    if (t != kNoTet) return t;
+    ++walk_fallbacks_;
+    return scan_for(p, o);
+  }
+
+  // A confined thread: from its remembered tetrahedron, which it made or was given readable and
+  // which only it writes, over readable tetrahedra only. No scan on failure (it would read the
+  // other threads' tetrahedra): kNoTet, and the method retries the point in a later pass.
+  TetId locate_confined(VertexId p, std::array<int, 4>& o, TetId start) {
+    if (start == kNoTet || !mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
+      blocked_ = true;  // no readable start in this pass (an abandoned insertion killed it)
+      return kNoTet;
+    }
+    const TetId t = walk<true>(p, o, start);
+    if (t == kNoTet && !blocked_) ++walk_fallbacks_;
+    return t;
+  }
+
   // Remembering stochastic visibility walk (Devillers, Pion and Teillaud 2002): from t, cross a
   // face that has p strictly on its far side, trying the faces from a random one on and never
   // the face just crossed (p lies strictly on this side of it). On a Delaunay tetrahedralization
   // with exact predicates no tetrahedron is visited twice, so a walk longer than the store is an
   // inexact kernel's cycle or a shared mesh changing under it: kNoTet. Ends with `o` the four
-  // orientations of p against the tetrahedron returned.
+  // orientations of p against the tetrahedron returned. kConfined: a face the policy does not let
+  // it cross is passed over for another face with p beyond it; with none, kNoTet and blocked_.
+  // (The face just crossed needs no asking: the walk came through it from the other side.)
+  template <bool kConfined = false>
   TetId walk(VertexId p, std::array<int, 4>& o, TetId t) {
     TetId previous = kNoTet;
     const std::uint64_t limit =
@@ -136,6 +171,7 @@ class PointLocator {
       const auto first = static_cast<int>(walk_random_ >> 62);
       int skipped = -1;
       TetId next = kNoTet;
+      [[maybe_unused]] bool fenced = false;  // p lies beyond a face the walk may not cross
       for (int k = 0; k < 4; ++k) {
         const int f = (first + k) & 3;
         const TetId across = ref_tet(load_neighbor(tet, f));
@@ -145,8 +181,25 @@ class PointLocator {
         }
         o[static_cast<std::size_t>(f)] = geometry_.orient_replaced(tet, f, p);
         if (o[static_cast<std::size_t>(f)] < 0) {
+          if constexpr (kConfined) {
+            if (!confinement_.may_cross(tet, f)) {
+              fenced = true;
+              continue;
+            }
+          }
           next = across;
           break;
+        }
+      }
+      if constexpr (kConfined) {
+        if (next == kNoTet && fenced) {
+          location_steps_ += step;
+          blocked_ = true;
+          // The next walk starts here: readable, and nearer the thread's next points (which
+          // follow along the curve) than where this one started, so that one walk stopped at the
+          // border does not stop every later one from the same start.
+          walk_start_ = t;
+          return kNoTet;
         }
       }
       if (next == kNoTet) {
@@ -260,12 +313,14 @@ class PointLocator {
   SharedMesh& mesh_;
   const TriangulateOptions& options_;
   MeshGeometry<K>& geometry_;
+  const Confinement& confinement_;
   bool walk_;
   bool recycle_;
   bool shared_;
   bool retry_on_miss_;
   TetId hint_ = kNoTet;
   TetId walk_start_ = kNoTet;
+  bool blocked_ = false;
   std::uint64_t walk_random_ = (options_.seed * 0x9E3779B97F4A7C15ULL) | 1;  // xorshift state
   std::uint64_t walk_fallbacks_ = 0;
   std::uint64_t location_steps_ = 0;

@@ -3,8 +3,9 @@
 // DAG mode: fresh slots only, never reused (the dead tetrahedra are the DAG). Walk mode: the
 // slots an insertion killed are reused once it has ended (its legalization stack may name them
 // until then); on a shared mesh only after the epochs say no other thread's operation can reach
-// them (slot_reclaimer.hpp). Fresh slots come in runs of kSlotRun from the store: one atomic step
-// per run, and one thread's records share cache lines only with its own.
+// them (slot_reclaimer.hpp), unless the thread's reads are confined (mesh/read_confinement.hpp:
+// nobody else reaches its dead slots, reused at once). Fresh slots come in runs of kSlotRun from
+// the store: one atomic step per run, and one thread's records share cache lines only with its own.
 #include <cassert>
 #include <cstddef>
 
@@ -17,9 +18,14 @@ namespace dtlab::engine {
 class SlotAllocator {
  public:
   // recycle: reuse dead slots; reclaimer: a shared mesh's epochs (nullptr for the owning engine,
-  // and for an engine that keeps every slot).
-  SlotAllocator(TetStore& store, bool recycle, SlotReclaimer* reclaimer)
-      : store_(store), recycle_(recycle), reclaimer_(reclaimer) {}
+  // for a thread that reads only what it alone writes, and for an engine that keeps every slot);
+  // track_attempts: an attempt can be rolled back, and its new slots are then free again (where
+  // slots are reused).
+  SlotAllocator(TetStore& store, bool recycle, SlotReclaimer* reclaimer, bool track_attempts)
+      : store_(store),
+        recycle_(recycle),
+        reclaimer_(reclaimer),
+        track_attempts_((track_attempts && recycle) || reclaimer != nullptr) {}
 
   // An operation reads the mesh (a location, an insertion attempt): the epochs protect what it
   // reaches until it ends. Entering twice is one operation (the pessimistic method's lock-free
@@ -59,13 +65,13 @@ class SlotAllocator {
         next_run();
       id = run_next_++;
     }
-    if (reclaimer_ != nullptr) attempt_created_.push_back(id);
+    if (track_attempts_) attempt_created_.push_back(id);
     return id;
   }
   // t, the last slot this attempt allocated, was never published (nothing references it, and
   // it is dead): free again at once, also on a shared mesh.
   void give_back(TetId t) {
-    if (reclaimer_ != nullptr) {
+    if (track_attempts_) {
       assert(!attempt_created_.empty() && attempt_created_.back() == t);
       (void)attempt_created_.pop_back();
     }
@@ -96,9 +102,10 @@ class SlotAllocator {
   TetStore& store_;
   bool recycle_;
   SlotReclaimer* reclaimer_;
+  bool track_attempts_;
   TetIdList free_slots_;
   TetIdList retired_;          // killed by the current insertion
-  TetIdList attempt_created_;  // taken by the current attempt (reclaimer only)
+  TetIdList attempt_created_;  // taken by the current attempt (track_attempts_ only)
   TetId run_next_ = 0;         // this thread's run of fresh slots: [run_next_, run_end_)
   TetId run_end_ = 0;
 };

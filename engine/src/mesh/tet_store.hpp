@@ -126,13 +126,9 @@ class TetStore {
     set_stride();
   }
   [[nodiscard]] bool has_lock_words() const { return lock_words_; }
-  // A store that other threads read while it changes, without lock words (the partitioned
-  // method): aliveness stays out of the record, whose vertices a reader must see unchanged, in
-  // the byte per slot. Before the first allocation.
-  void keep_alive_flags(bool keep) {
-    alive_flags_ = keep;
-    set_stride();
-  }
+  // Whether aliveness is the record's last vertex (kDeadVertex once dead): neither lock words nor
+  // DAG children (is_alive says where else it is kept).
+  [[nodiscard]] bool alive_in_record() const { return alive_in_record_; }
 
   // Whether slot t holds a live tetrahedron. Dead tetrahedra are DAG history (or, in walk mode,
   // free slots).
@@ -140,10 +136,11 @@ class TetStore {
   //   record's cache line; release on death and birth, acquire on reading.
   // - Where only dead records are read (DAG children, one thread): a byte per slot, in an array
   //   after the block's slots (a byte in the slot would cost the alignment of the next record).
-  // - Where other threads read the mesh without lock words (the partitioned method): the same
-  //   byte, with release and acquire.
-  // - A sequential walk keeps neither: nobody reads a dead record there (the walk's remembered
-  //   start and the legalization's stack ask first), so death writes kDeadVertex into the
+  // - A walk without lock words keeps neither: the sequential walk, and the partitioned method,
+  //   whose threads never read a record another thread writes (methods/partition_sync.hpp).
+  //   Nobody reads a dead record there while another thread writes it (the walk's remembered
+  //   start and the legalization's stack ask first; a stale start from an earlier pass is asked
+  //   after the threads were joined), so death writes kDeadVertex into the
   //   record's last vertex, and birth is writing the record. 32 bytes a slot instead of 33.
   // is_alive, set_alive, operator[] and the slot lookup are always inlined: a few instructions
   // each, called several times per flip, and GCC had left is_alive and set_alive out of line in
@@ -331,7 +328,7 @@ class TetStore {
   }
   void set_stride() {
     stride_ = children_offset() + (children_ ? sizeof(Children) : 0);
-    alive_in_record_ = !children_ && !lock_words_ && !alive_flags_;
+    alive_in_record_ = !children_ && !lock_words_;
   }
   char* new_block() const {
     void* memory =
@@ -363,8 +360,7 @@ class TetStore {
   std::atomic<std::size_t> blocks_mapped_{0};
   bool children_ = true;
   bool lock_words_ = true;
-  bool alive_flags_ = false;
-  bool alive_in_record_ = false;  // neither lock words nor children: a sequential walk
+  bool alive_in_record_ = false;  // neither lock words nor children: a walk without lock words
   std::size_t stride_ = sizeof(Tet) + sizeof(std::uint32_t) + sizeof(Children);  // per slot
   std::size_t capacity_ = kMaxTets;
 };

@@ -5,15 +5,19 @@
 // through it, so that a change to the store's protocol is made here once. In order:
 //  0. lock_and_log: every tetrahedron written besides the new ones (the outside neighbours, which
 //     get back references; the old ones, locked already) is locked, then logged before its first
-//     write (the lock policy's acquire and before_write), so a refused lock writes nothing;
-//  1. new records: a slot that is this thread's (fresh, or reused after its grace period) and
+//     write (the lock policy's acquire and before_write), so a refused lock writes nothing (a
+//     cavity locks in its search instead, and a confined policy's cavity leaves the outside
+//     neighbours unlocked: insertion/cavity_search.hpp);
+//  1. new records: a slot that is this thread's (fresh, or reused after its grace period, or at
+//     once by a thread whose reads are confined: mesh/read_confinement.hpp) and
 //     that nobody can reach, written by plain stores; created() clears its DAG children where the
 //     store keeps history and hands it to the lock policy, owned from birth;
 //  2. publish: the outside's references to the complete new records, with release, so that a
 //     walking thread that reaches a new tetrahedron finds all four of its references set;
 //  3. kill: each old tetrahedron dies; with history its DAG children are written first (release),
 //     so a descent that finds it dead finds its children; with slot reuse its slot is retired, for
-//     reuse once the insertion (and on a shared mesh the epochs) let it go;
+//     reuse once the insertion (and on a shared mesh the epochs, unless reads are confined) let
+//     it go;
 //  4. born: the new tetrahedra live.
 // Slots: SlotAllocator (the engine's threads) or StoreSlots (a repair, whose slots follow each
 // other in the order it takes them).

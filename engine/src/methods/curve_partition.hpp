@@ -1,9 +1,11 @@
 #pragma once
-// The partitioned method's map from space to threads for one pass (partitioned.cpp): the Hilbert
-// curve of the points' cube (location/insertion_order.hpp, hilbert_keys) cut into `parts` arcs,
-// one a part; the last arc wraps around from the curve's end to its start. The cuts sit at the
-// quantiles (j + phase) / parts of the pass's points, so each part gets as many points to insert,
-// and a new phase moves every cut for the next pass.
+// The partitioned method's map from space to threads for one pass (partitioned.cpp): the pass's
+// Hilbert curve (location/insertion_order.hpp, hilbert_key_in) cut into `parts` arcs, one a part,
+// at the quantiles j / parts of the pass's points (or a sample of them), so that each part gets
+// as many points to insert. The arcs do not wrap around: each is one run of the curve, so that a
+// thread inserting its arc's points in curve order walks on from one to the next. (A wrapping last
+// arc, from the curve's end to its start, was two runs far apart: the thread's walk from the
+// first to the second was stopped at the other parts' border, and with it every later walk.)
 #include <algorithm>
 #include <cstdint>
 #include <span>
@@ -14,8 +16,8 @@ namespace dtlab::engine {
 class CurvePartition {
  public:
   // Cuts at the quantiles of `sorted_keys` (keys of the pass's points, or a sample of them,
-  // ascending): cut j at position floor((j + phase) / parts x size), phase in [0, 1).
-  void cut(std::span<const std::uint64_t> sorted_keys, int parts, double phase) {
+  // ascending): cut j, j = 1 .. parts - 1, at position floor(j / parts x size).
+  void cut(std::span<const std::uint64_t> sorted_keys, int parts) {
     cuts_.clear();
     if (parts <= 1 || sorted_keys.empty()) {
       parts_ = 1;
@@ -23,21 +25,20 @@ class CurvePartition {
     }
     parts_ = parts;
     const double n = static_cast<double>(sorted_keys.size());
-    for (int j = 0; j < parts; ++j) {
-      const auto at = static_cast<std::size_t>((j + phase) / parts * n);
+    for (int j = 1; j < parts; ++j) {
+      const auto at = static_cast<std::size_t>(static_cast<double>(j) / parts * n);
       cuts_.push_back(sorted_keys[std::min(at, sorted_keys.size() - 1)]);
     }
   }
 
-  // The part of a point with this key: j when cut j <= key < cut j + 1; the last part also
-  // takes the keys below cut 0 (the wrap).
+  // The part of a point with this key: j when cut j <= key < cut j + 1 (part 0 below cut 1, the
+  // last part from the last cut on).
   [[nodiscard]] int part_of(std::uint64_t key) const {
-    if (parts_ == 1) return 0;
-    const auto above = std::upper_bound(cuts_.begin(), cuts_.end(), key);
-    return above == cuts_.begin() ? parts_ - 1 : static_cast<int>(above - cuts_.begin()) - 1;
+    return static_cast<int>(std::upper_bound(cuts_.begin(), cuts_.end(), key) - cuts_.begin());
   }
 
   [[nodiscard]] int parts() const { return parts_; }
+  // The parts - 1 cuts, ascending.
   [[nodiscard]] std::span<const std::uint64_t> cuts() const { return cuts_; }
 
  private:

@@ -23,6 +23,7 @@ class LocalUndoLog {
     Saved& s = log_.emplace_back();
     s.tet = t;
     s.neighbor = mesh_.tets[t].neighbor;
+    s.last_vertex = mesh_.tets[t].vertex[3];
   }
   void created(TetId t, bool last_write = false) {
     if (!last_write) created_.push_back(t);
@@ -36,15 +37,19 @@ class LocalUndoLog {
     log_.clear();
     created_.clear();
   }
-  // The saved references back (with release: other threads' walks read them), every saved
-  // tetrahedron alive again (only live ones are written), every new one dead (the slot
-  // allocator takes their slots back).
+  // The saved references back (with release: the lock grid's other threads walk over them),
+  // every saved tetrahedron alive again (only live ones are written), every new one dead (the
+  // slot allocator takes their slots back). Where the record carries its aliveness (the
+  // partitioned method's store, which no other thread reads while this one writes) death
+  // overwrote the last vertex: it comes back too.
   void undo() {
+    const bool in_record = mesh_.tets.alive_in_record();
     for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
       Tet& tet = mesh_.tets[it->tet];
       for (int f = 0; f < 4; ++f) {
         store_neighbor(tet, f, it->neighbor[static_cast<std::size_t>(f)]);
       }
+      if (in_record) tet.vertex[3] = it->last_vertex;
     }
     for (const Saved& s : log_) mesh_.tets.set_alive(s.tet, true);
     for (const TetId t : created_) mesh_.tets.set_alive(t, false);
@@ -57,6 +62,7 @@ class LocalUndoLog {
   struct Saved {
     TetId tet;
     std::array<FaceRef, 4> neighbor;
+    VertexId last_vertex;  // kDeadVertex once dead, where the record carries aliveness
   };
   std::vector<Saved> log_;
   TetIdList created_;

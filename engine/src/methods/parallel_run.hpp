@@ -56,8 +56,8 @@ class ParallelRun {
 
   // `inserting_threads`: the threads that write the mesh (each an entry of stats.threads).
   // `lock_words`: a lock word per slot (the lock methods; the lock grid keeps only the aliveness
-  // bit in it); without, the partitioned method's store keeps aliveness in a byte per slot, out
-  // of the records other threads read.
+  // bit in it); without (the partitioned method, whose threads read no record another thread
+  // writes), aliveness is the record's last vertex, as in the sequential walk.
   ParallelRun(const MethodInput& input, TriangulationStats& stats, int inserting_threads,
               bool lock_words = true)
       : input(input),
@@ -78,7 +78,6 @@ class ParallelRun {
     if (options.max_tetrahedra > 0) mesh.tets.set_capacity(options.max_tetrahedra);
     mesh.tets.keep_children(location.history);
     mesh.tets.keep_lock_words(lock_words);
-    mesh.tets.keep_alive_flags(!lock_words);
     TriangulationStats start_stats;
     NoSync no_sync;
     IncrementalDelaunay<K, NoSync>(mesh, options, start_stats, no_sync)
@@ -261,13 +260,15 @@ class ParallelRun {
 };
 
 // One thread's inserter on the run's mesh, with the thread's side of the epochs where the
-// location mode reuses slots. `epoch_slot`: the thread's announcement in run.epochs; `stats`: where
-// its inserter counts.
+// location mode reuses slots and other threads may read them (not for a policy that confines its
+// reads: insertion/sync.hpp). `epoch_slot`: the thread's announcement in run.epochs; `stats`:
+// where its inserter counts.
 template <class K, class Sync>
 struct ThreadInserter {
   ThreadInserter(ParallelRun<K>& run, int epoch_slot, TriangulationStats& stats, Sync& sync)
       : reclaimer(run.epochs, epoch_slot),
-        dt(run.mesh, run.options, stats, sync, run.location.slot_reuse ? &reclaimer : nullptr) {}
+        dt(run.mesh, run.options, stats, sync,
+           run.location.slot_reuse && !kConfinedReads<Sync> ? &reclaimer : nullptr) {}
   SlotReclaimer reclaimer;
   IncrementalDelaunay<K, Sync> dt;
 };

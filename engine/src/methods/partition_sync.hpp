@@ -1,13 +1,16 @@
 #pragma once
-// The partitioned method's policy (partitioned.cpp): no lock words and no waiting. A thread may
-// change only the tetrahedra its part owns: those whose finite vertices all lie in its part
-// (part_of, fixed for the pass; the vertex at infinity belongs to every part). acquire() is that
-// test, asked for every tetrahedron an insertion reads for change or writes (inserter.hpp,
-// topology_commit.hpp). The parts are disjoint and a tetrahedron's vertices do not change while
-// it lives (nor while a reader's epoch holds its slot), so no tetrahedron is ever written by two
-// threads in a pass: docs/design.md, "The partitioned method", has the argument. A refusal gives
-// the insertion up: a cavity has written nothing yet; the flips are undone from this thread's
-// log, and the point waits for a pass with other cuts.
+// The partitioned method's policy (partitioned.cpp): no lock words, no waiting, and no read of
+// anything another thread writes. A thread may change only the tetrahedra its part owns: those
+// whose finite vertices all lie in its part (part_of, fixed for the pass; the vertex at infinity
+// belongs to every part). acquire() is that test, asked for every tetrahedron an insertion changes
+// (inserter.hpp, topology_commit.hpp; a cavity's outside neighbours only get an atomic back
+// reference, unasked: insertion/cavity_search.hpp). A tetrahedron with a finite vertex of
+// this thread's part is owned by no other part, so no other thread writes it during the pass: the
+// thread reads only such tetrahedra (readable), and its walk crosses only faces with a vertex of
+// its part (may_cross), into such a tetrahedron. The parts are disjoint, so no tetrahedron is
+// written by two threads nor read while another writes it: docs/design.md, "The partitioned
+// method", has the argument. A refusal gives the insertion up: a cavity has written nothing yet;
+// the flips are undone from this thread's log, and the point waits for a pass with other cuts.
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +39,27 @@ class PartitionSync : public LocalUndoLog {
       if (v != kInfiniteVertex && part_of_[v] != part_) return false;
     }
     return true;
+  }
+
+  // Whether other threads write the mesh during this pass (a pass of several parts).
+  [[nodiscard]] bool confined() const { return !whole_; }
+  // Whether the tetrahedron across face f of `tet` (a readable one) is readable: the face has a
+  // finite vertex of this part (a face has at least two finite vertices).
+  [[nodiscard]] bool may_cross(const Tet& tet, int f) const {
+    if (whole_) return true;
+    for (const int k : kFaceVertex[static_cast<std::size_t>(f)]) {
+      const VertexId v = tet.vertex[static_cast<std::size_t>(k)];
+      if (v != kInfiniteVertex && part_of_[v] == part_) return true;
+    }
+    return false;
+  }
+  // Whether no other thread writes `tet` during the pass: it has a finite vertex of this part.
+  [[nodiscard]] bool readable(const Tet& tet) const {
+    if (whole_) return true;
+    for (const VertexId v : tet.vertex) {
+      if (v != kInfiniteVertex && part_of_[v] == part_) return true;
+    }
+    return false;
   }
 
   void commit() { forget(); }

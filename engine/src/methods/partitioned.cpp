@@ -2,16 +2,18 @@
 // partitioned method"): no lock on the hot path. Each pass lays a Hilbert curve through a cube
 // moved against the points and cuts it into one arc a thread (CurvePartition); a thread inserts
 // the pass's points of its arc, and an insertion that would change a tetrahedron with a vertex of
-// another arc is given up (PartitionSync) and waits for the next pass, whose curve and cuts lie
-// elsewhere. The passes follow the BRIO rounds of the walk
-// mode's order; what is left after the last round goes in by further passes, the last ones on one
-// thread. Walk mode only: the passes change the insertion order, which the DAG's expected cost
-// rests on.
+// another arc, or whose walk would leave the tetrahedra no other thread writes, is given up
+// (PartitionSync) and waits for the next pass, whose curve and cuts lie elsewhere. So a thread
+// reads nothing another writes: no epochs, and its dead slots are reused at once. The passes follow
+// the BRIO rounds of the walk mode's order; what is left after the last round goes in by further
+// passes, the last ones on one thread. Walk mode only: the passes change the insertion order, which
+// the DAG's expected cost rests on.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "location/insertion_order.hpp"
@@ -28,8 +30,18 @@ namespace {
 
 // Passes after the last round that may still use several parts; then one part inserts the rest.
 constexpr int kFinalParallelPasses = 3;
+// The passes' curves: a grid of 2^10 cells a side over twice the input's cube (512 across the
+// input), at half the cost of the walk mode's 21 bits (keys are taken for every vertex in every
+// pass). Fine enough to cut and order points that spread through their box (512^3 cells, over a
+// hundred a point at 1M); points crowded into a few cells (a far outlier) share keys, so the cuts
+// fall unevenly and the passes are unbalanced: slower, never wrong (a part is any set of points).
+constexpr unsigned kPassKeyBits = 10;
 // Keys sampled to place the cuts.
 constexpr std::size_t kCutSample = 4096;
+// Tetrahedra looked at around an anchor point for a readable start (place_walk_starts).
+constexpr std::size_t kStartSearch = 4096;
+// A part's anchors: every this many of its pending points in a pass (place_walk_starts).
+constexpr std::size_t kAnchorSpacing = 256;
 
 // A part gets at least options.points_per_part points: in smaller passes the arcs are short,
 // most insertions cross a cut, and one thread is faster.
@@ -74,8 +86,10 @@ class PartitionedRun {
         frame_(hilbert_frame(input.points, input.input_count, run_.threads)),
         part_of_(input.points.size(), 0),
         failed_(static_cast<std::size_t>(run_.threads)),
+        stopped_walks_(static_cast<std::size_t>(run_.threads), 0),
         busy_(static_cast<std::size_t>(run_.threads), 0.0),
-        unlocated_(static_cast<std::size_t>(run_.threads)) {
+        unlocated_(static_cast<std::size_t>(run_.threads)),
+        anchors_(static_cast<std::size_t>(run_.threads)) {
     for (int i = 0; i < run_.threads; ++i) {
       syncs_.push_back(std::make_unique<PartitionSync>(run_.mesh, part_of_));
       inserters_.push_back(std::make_unique<ThreadInserter<K, PartitionSync>>(
@@ -90,7 +104,7 @@ class PartitionedRun {
       std::vector<std::uint32_t> pending(run_.order.begin() + static_cast<std::ptrdiff_t>(begin),
                                          run_.order.begin() + static_cast<std::ptrdiff_t>(end));
       append_in_order(pending, carried);
-      carried = pass(pending, end, parts_for(pending.size(), run_.options));
+      carried = pass(pending, begin, parts_for(pending.size(), run_.options));
     }
     for (int final_pass = 0; !carried.empty(); ++final_pass) {
       const int parts =
@@ -114,16 +128,17 @@ class PartitionedRun {
     postponed.clear();
   }
 
-  // Inserts `pending` on `parts` threads; the vertices so far are order[0, inserted_end) and the
-  // first four. Returns the points postponed.
-  std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t inserted_end,
+  // Inserts `pending` on `parts` threads; the vertices so far are the first four and those of
+  // order[0, vertices_end) not pending. Returns the points postponed.
+  std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t vertices_end,
                                   int parts) {
     const auto start = std::chrono::steady_clock::now();
-    cut(parts, inserted_end);
+    cut(parts, vertices_end);
     if (parts > 1) sort_along_pass_curve(pending);
     for (int i = 0; i < run_.threads; ++i) {
       syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
     }
+    if (parts > 1) place_walk_starts(parts, pending);
     run_.on_threads([&](int i) {
       if (i >= parts) return;
       const auto thread_start = std::chrono::steady_clock::now();
@@ -137,6 +152,10 @@ class PartitionedRun {
       f.clear();
     }
     PartitionPass record;
+    for (std::uint64_t& stopped : stopped_walks_) {
+      record.stopped_walks += stopped;
+      stopped = 0;
+    }
     record.points = pending.size();
     record.parts = static_cast<std::uint64_t>(parts);
     record.postponed = postponed.size();
@@ -153,31 +172,34 @@ class PartitionedRun {
     return postponed;
   }
 
-  // A pass with several parts inserts along its own curve: each part's points are then one run
-  // (the wrapping part's two), so that a thread walks from each point to the next, not across the
-  // other parts between its runs of the walk mode's order.
-  void sort_along_pass_curve(std::vector<std::uint32_t>& pending) const {
+  // A pass with several parts inserts along its own curve: each part's points are then one run,
+  // so that a thread walks from each point to the next, not across the other parts between its
+  // runs of the walk mode's order. The keys also name the pending points' parts.
+  void sort_along_pass_curve(std::vector<std::uint32_t>& pending) {
     std::vector<KeyedId> keyed(pending.size());
     std::vector<KeyedId> scratch(pending.size());
     in_parallel_ranges(
         pending.size(), run_.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
           for (std::size_t i = begin; i < end; ++i) {
-            keyed[i] = {hilbert_key_in(pass_frame_, run_.input.points[pending[i]]), pending[i]};
+            const std::uint64_t key = pass_key(pending[i]);
+            part_of_[pending[i]] = static_cast<std::uint8_t>(partition_.part_of(key));
+            keyed[i] = {key, pending[i]};
           }
         });
     stable_sort_by_key(keyed.data(), scratch.data(), keyed.size(), run_.threads);
     for (std::size_t i = 0; i < keyed.size(); ++i) pending[i] = keyed[i].second;
   }
 
-  // Lays the pass's curve (moved_frame), cuts it and names every vertex's part. Cutting one
+  // Lays the pass's curve (moved_frame), cuts it and names the parts of the vertices so far (the
+  // pending points' are named as they are sorted). Cutting one
   // curve at other places would not do: the arcs of one curve meet along the faces of its coarse
   // cells whatever the cuts, and the points postponed there would be postponed again. The cuts
   // are quantiles of a sample of all the points: a BRIO round is a random sample of them, so its
   // parts get as many points; the postponed points crowd where the last arcs met, and quantiles
   // of theirs would cut there again.
-  void cut(int parts, std::size_t inserted_end) {
+  void cut(int parts, std::size_t vertices_end) {
     if (parts == 1) {
-      partition_.cut({}, 1, 0.0);
+      partition_.cut({}, 1);
       return;
     }
     pass_frame_ = moved_frame(frame_, ++cuts_made_);
@@ -185,12 +207,12 @@ class PartitionedRun {
     const std::size_t count = run_.input.input_count;
     const std::size_t step = std::max<std::size_t>(1, count / kCutSample);
     for (std::size_t i = 0; i < count; i += step) {
-      sample.push_back(hilbert_key_in(pass_frame_, run_.input.points[i]));
+      sample.push_back(pass_key(static_cast<std::uint32_t>(i)));
     }
     std::sort(sample.begin(), sample.end());
-    partition_.cut(sample, parts, 0.0);
+    partition_.cut(sample, parts);
     const std::vector<std::uint32_t>& order = run_.order;
-    in_parallel_ranges(inserted_end, run_.threads,
+    in_parallel_ranges(vertices_end, run_.threads,
                        [&](std::size_t begin, std::size_t end, std::size_t) {
                          for (std::size_t i = begin; i < end; ++i) {
                            part_of_[order[i]] = name_part(order[i]);
@@ -198,26 +220,94 @@ class PartitionedRun {
                        });
     for (const std::uint32_t v : run_.input.first) part_of_[v] = name_part(v);
   }
-  std::uint8_t name_part(std::uint32_t v) const {
-    return static_cast<std::uint8_t>(
-        partition_.part_of(hilbert_key_in(pass_frame_, run_.input.points[v])));
+  // Before a pass of several parts, on this thread alone: the walk starts of every part at its
+  // anchors, every kAnchorSpacing-th of its pending points (the first included), each a
+  // tetrahedron with a vertex of the part (readable: no other thread writes it in the pass), the
+  // nearest found to the anchor point. The walks to these points may go anywhere now, as nobody
+  // writes. A part's first walk starts at its first anchor; a later anchor's start is taken after
+  // a give-up (insert_part), so that a walk stopped at the part's border (where the arc leaves
+  // the points' box and comes back elsewhere, say) does not leave every later walk of the pass
+  // starting there. An anchor with no readable tetrahedron near it (none in kStartSearch) has
+  // none: the part's points after it wait for the next anchor or pass.
+  void place_walk_starts(int parts, const std::vector<std::uint32_t>& pending) {
+    std::vector<std::size_t> counted(static_cast<std::size_t>(parts), 0);
+    for (auto& a : anchors_) a.clear();
+    for (std::size_t position = 0; position < pending.size(); ++position) {
+      const std::uint8_t part = part_of_[pending[position]];
+      if (counted[part]++ % kAnchorSpacing == 0) anchors_[part].push_back({position, kNoTet});
+    }
+    for (int i = 0; i < parts; ++i) {
+      const auto index = static_cast<std::size_t>(i);
+      if (anchors_[index].empty()) continue;
+      PartitionSync& sync = *syncs_[index];
+      auto& dt = inserters_[index]->dt;
+      sync.set_part(static_cast<std::uint8_t>(i), true);
+      std::vector<TetId> located;
+      for (const Anchor& a : anchors_[index]) {
+        located.push_back(dt.locate_only(pending[a.position]));  // walks on from the last one
+        dt.end_operation();
+      }
+      sync.set_part(static_cast<std::uint8_t>(i), false);
+      for (std::size_t k = 0; k < located.size(); ++k) {
+        anchors_[index][k].start = readable_near(located[k], sync);
+      }
+      dt.set_walk_start(anchors_[index].front().start);
+    }
+  }
+  // A tetrahedron `sync` may read: t or the nearest in a breadth-first search over faces.
+  TetId readable_near(TetId t, const PartitionSync& sync) const {
+    if (t == kNoTet) return kNoTet;
+    const TetStore& tets = run_.mesh.tets;
+    std::vector<TetId> queue{t};
+    std::unordered_set<TetId> seen{t};
+    for (std::size_t i = 0; i < queue.size() && i < kStartSearch; ++i) {
+      const Tet& tet = tets[queue[i]];
+      if (sync.readable(tet)) return queue[i];
+      for (const FaceRef r : tet.neighbor) {
+        if (seen.insert(ref_tet(r)).second) queue.push_back(ref_tet(r));
+      }
+    }
+    return kNoTet;
   }
 
-  // Thread i's share of the pass: the pending points of its part, in the pass's order.
+  std::uint8_t name_part(std::uint32_t v) const {
+    return static_cast<std::uint8_t>(partition_.part_of(pass_key(v)));
+  }
+  std::uint64_t pass_key(std::uint32_t v) const {
+    return hilbert_key_in(pass_frame_, run_.input.points[v], kPassKeyBits);
+  }
+
+  // Thread i's share of the pass: the pending points of its part, in the pass's order; after a
+  // give-up the walks go on from the next anchor (place_walk_starts).
   void insert_part(int i, int parts, const std::vector<std::uint32_t>& pending) {
     const auto index = static_cast<std::size_t>(i);
     ThreadStats counters;  // added to stats.threads once (optimistic_worker.hpp says why)
     auto& dt = inserters_[index]->dt;
     std::vector<std::uint32_t>& failed = failed_[index];
     using Outcome = typename IncrementalDelaunay<K, PartitionSync>::Outcome;
-    for (const std::uint32_t v : pending) {
+    const std::vector<Anchor>& anchors = anchors_[index];
+    std::size_t next_anchor = 1;  // the first one is the pass's first start
+    bool gave_up = false;         // since the last anchor
+    for (std::size_t position = 0; position < pending.size(); ++position) {
+      const std::uint32_t v = pending[position];
       if (parts > 1 && part_of_[v] != i) continue;
       if (run_.stopping()) break;
+      if (parts > 1 && next_anchor < anchors.size() && anchors[next_anchor].position == position) {
+        const TetId start = anchors[next_anchor++].start;
+        // Readable, so written by this thread alone: its aliveness can be asked.
+        if (gave_up && start != kNoTet && run_.mesh.tets.is_alive(start)) dt.set_walk_start(start);
+        gave_up = false;
+      }
       const Outcome outcome = dt.insert(v);
+      // An abandoned insertion (the flip bound) may have killed the walk's start: the next
+      // anchor's start is taken then too.
+      gave_up = gave_up || outcome == Outcome::GaveUp || outcome == Outcome::Unlocated ||
+                outcome == Outcome::Abandoned;
       count_outcome(outcome, counters);
       if (outcome == Outcome::Unlocated) {
-        // On one part nothing else changes the mesh: an inexact kernel's contradiction, which
-        // repeats; a point is given a bounded number of tries (as in the lock methods).
+        // A thread's walk reads only what nobody else changes, so a walk that failed (not one
+        // stopped at the part's border, which gives up) is an inexact kernel's contradiction,
+        // which repeats; a point is given a bounded number of tries (as in the lock methods).
         if (++unlocated_[index][v] > WorkSource::kMaxLocationAttempts) {
           ++counters.abandoned;
           run_.progressed();
@@ -226,6 +316,7 @@ class PartitionedRun {
       }
       if (outcome == Outcome::GaveUp || outcome == Outcome::Unlocated) {
         failed.push_back(v);
+        if (outcome == Outcome::GaveUp && dt.walk_stopped()) ++stopped_walks_[index];
       } else {
         run_.progressed();
       }
@@ -247,8 +338,14 @@ class PartitionedRun {
   std::vector<std::unique_ptr<PartitionSync>> syncs_;
   std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
   std::vector<std::vector<std::uint32_t>> failed_;  // per thread, this pass
+  std::vector<std::uint64_t> stopped_walks_;        // per thread, this pass
   std::vector<double> busy_;                        // per thread, this pass's seconds
   std::vector<std::unordered_map<std::uint32_t, int>> unlocated_;  // per thread: failed walks
+  struct Anchor {
+    std::size_t position;  // in the pass's pending points
+    TetId start;           // readable, near that point; kNoTet if none was found
+  };
+  std::vector<std::vector<Anchor>> anchors_;  // per part, this pass
 };
 
 }  // namespace

@@ -61,11 +61,13 @@ struct ThreadStats {
 // part of the curve owns the mesh; the points whose change reached another part wait for the next
 // pass (whose cuts differ).
 struct PartitionPass {
-  std::uint64_t points = 0;     // tried in this pass
-  std::uint64_t parts = 0;      // threads inserting (1: the pass runs on one thread)
-  std::uint64_t postponed = 0;  // left for a later pass
-  double seconds = 0.0;         // the pass's wall time
-  double imbalance = 1.0;       // the busiest part's time over the parts' mean (1: balanced)
+  std::uint64_t points = 0;         // tried in this pass
+  std::uint64_t parts = 0;          // threads inserting (1: the pass runs on one thread)
+  std::uint64_t postponed = 0;      // left for a later pass
+  std::uint64_t stopped_walks = 0;  // of those, walks stopped at the part's border (or
+                                    // with no readable start)
+  double seconds = 0.0;             // the pass's wall time
+  double imbalance = 1.0;           // the busiest part's time over the parts' mean (1: balanced)
 };
 
 // Burglary's sequential post-check (paper Sect. 5): the exact validator's count after the
