@@ -62,10 +62,8 @@ std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, uns
 
 namespace {
 
-constexpr unsigned kBits = 21;
-
 // A coordinate's cell on the 2^bits grid over [lo, lo + extent].
-std::uint32_t cell(double c, double lo, double extent, unsigned bits = kBits) {
+std::uint32_t cell(double c, double lo, double extent, unsigned bits) {
   if (!(extent > 0)) return 0;
   const double top = static_cast<double>((1u << bits) - 1);
   const double scaled = (c - lo) / extent * top;

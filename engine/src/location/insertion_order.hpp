@@ -33,10 +33,12 @@ struct HilbertFrame {
 // The cube around the first `count` points, as brio_hilbert_order takes it for its points.
 HilbertFrame hilbert_frame(const std::vector<predicates::Point3>& points, std::size_t count,
                            int threads = 1);
+// The walk mode's order's grid: 2^21 cells a side (the most that fits a 63-bit key).
+inline constexpr unsigned kHilbertBits = 21;
 // p's key on the curve of a 2^bits grid through `frame` (a point outside the cube takes its
-// nearest cell; bits <= 21, the walk mode's order's).
+// nearest cell; bits <= kHilbertBits).
 std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3& p,
-                             unsigned bits = 21);
+                             unsigned bits = kHilbertBits);
 
 inline constexpr std::size_t kFirstRound = 256;
 

@@ -36,7 +36,7 @@ class PartitionSync : public LocalUndoLog {
   bool acquire(TetId t) const {
     if (whole_) return true;
     for (const VertexId v : mesh_.tets[t].vertex) {
-      if (v != kInfiniteVertex && part_of_[v] != part_) return false;
+      if (v != kInfiniteVertex && !mine(v)) return false;
     }
     return true;
   }
@@ -48,8 +48,7 @@ class PartitionSync : public LocalUndoLog {
   [[nodiscard]] bool may_cross(const Tet& tet, int f) const {
     if (whole_) return true;
     for (const int k : kFaceVertex[static_cast<std::size_t>(f)]) {
-      const VertexId v = tet.vertex[static_cast<std::size_t>(k)];
-      if (v != kInfiniteVertex && part_of_[v] == part_) return true;
+      if (mine(tet.vertex[static_cast<std::size_t>(k)])) return true;
     }
     return false;
   }
@@ -57,7 +56,7 @@ class PartitionSync : public LocalUndoLog {
   [[nodiscard]] bool readable(const Tet& tet) const {
     if (whole_) return true;
     for (const VertexId v : tet.vertex) {
-      if (v != kInfiniteVertex && part_of_[v] == part_) return true;
+      if (mine(v)) return true;
     }
     return false;
   }
@@ -66,6 +65,9 @@ class PartitionSync : public LocalUndoLog {
   void rollback() { undo(); }
 
  private:
+  // v is a finite vertex of this thread's part.
+  [[nodiscard]] bool mine(VertexId v) const { return v != kInfiniteVertex && part_of_[v] == part_; }
+
   const std::vector<std::uint8_t>& part_of_;
   std::uint8_t part_ = 0;
   bool whole_ = true;

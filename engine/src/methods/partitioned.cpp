@@ -256,8 +256,8 @@ class PartitionedRun {
   }
   // A tetrahedron `sync` may read: t or the nearest in a breadth-first search over faces.
   TetId readable_near(TetId t, const PartitionSync& sync) const {
-    if (t == kNoTet) return kNoTet;
     const TetStore& tets = run_.mesh.tets;
+    if (t == kNoTet || sync.readable(tets[t])) return t;  // mostly: no search
     std::vector<TetId> queue{t};
     std::unordered_set<TetId> seen{t};
     for (std::size_t i = 0; i < queue.size() && i < kStartSearch; ++i) {
