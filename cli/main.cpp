@@ -223,7 +223,12 @@ int main(int argc, char** argv) {
       "run one study (dtlab experiment --list) and write DIR/NAME.csv, NAME.md, NAME.png and "
       "machine.json. Each study has its own configurations, written in its table (not "
       "triangulate's walk-and-cavity default)");
-  experiment->add_option("NAME", study, "the study");
+  std::vector<std::string> merge_dirs;
+  experiment->add_option("NAME", study, "the study, or merge (then OUT and the shards' folders)");
+  experiment->add_option("DIRS", merge_dirs, "merge: OUT, then the folders of every shard");
+  experiment->add_option("--shard", eopts.shard,
+                         "K/N: run the K-th of N slices of the plan (1 <= K <= N), for "
+                         "dtlab experiment merge OUT DIR... to join");
   experiment->add_flag("--list", list_studies, "name every study and what it measures");
   experiment->add_option("--out", eopts.out_dir, "output directory");
   experiment->add_flag(
@@ -249,6 +254,18 @@ int main(int argc, char** argv) {
                          "the real models' directory (default $DTLAB_DATA_DIR or ../shared/data "
                          "beside the source tree)");
   experiment->add_flag("--no-plot", no_plot, "write no PNG (no python3 or matplotlib needed)");
+  experiment
+      ->add_option("--timeout", eopts.timeout_seconds,
+                   "seconds after which a run is killed and recorded as timed out (default: the "
+                   "study's; peers 60, 20 with --quick; the others none)")
+      ->check(CLI::NonNegativeNumber);
+  experiment
+      ->add_option("--tools", eopts.tools,
+                   "peers: the tools to run (default all): cgal-epick, cgal-doubles, qhull-Qt, "
+                   "qhull-QJ, tetgen, dtlab-fast, dtlab-adaptive, dtlab-filtered")
+      ->delimiter(',');
+  experiment->add_option("--tetgen", eopts.tetgen,
+                         "peers: the TetGen program (default $DTLAB_TETGEN or tetgen on PATH)");
 
   auto* methods_cmd = app.add_subcommand(
       "methods", "the methods --method takes, what each does and supports (a Markdown table)");
@@ -311,6 +328,21 @@ int main(int argc, char** argv) {
       eopts.plot = !no_plot;
       for (int i = 0; i < argc; ++i) {
         eopts.command_line += (i == 0 ? std::string("dtlab") : " " + std::string(argv[i]));
+      }
+      if (study == "merge") {
+        if (merge_dirs.size() < 2 || !eopts.out_dir.empty()) {
+          std::fprintf(stderr,
+                       "dtlab: error: dtlab experiment merge OUT DIR... (OUT, then "
+                       "every shard's folder; no --out)\n");
+          return 2;
+        }
+        eopts.out_dir = merge_dirs.front();
+        return dtlab::experiments::merge_experiment(
+            std::vector<std::string>(merge_dirs.begin() + 1, merge_dirs.end()), eopts);
+      }
+      if (!merge_dirs.empty()) {
+        std::fprintf(stderr, "dtlab: error: unexpected arguments after the study's name\n");
+        return 2;
       }
       return dtlab::experiments::run_experiment(study, eopts);
     }

@@ -8,6 +8,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev liblzma-dev zlib1g-dev
   clang libclang-rt-dev
   python3 python3-matplotlib xz-utils
+  # dtlab experiment peers: the other meshers it judges; GNU parallel for sharded studies
+  libqhull-dev tetgen parallel
   # import dtlab (python/): the binding, its tests, and the readers its files are checked with
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-meshio python3-vtk9
 )

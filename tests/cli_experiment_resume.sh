@@ -90,7 +90,7 @@ diff <(keys "$dir/dist/speedup.csv") <(keys "$dir/olddist/speedup.csv") >/dev/nu
   fail "old keys: runs differ"
 
 listed=$("$dtlab" experiment --list | awk '{print $1}' | tr '\n' ' ')
-[ "$listed" = "burglary-errors predicate-errors speedup breakdown flips deadlocks hull-loss compare " ] ||
+[ "$listed" = "burglary-errors predicate-errors speedup breakdown flips deadlocks hull-loss compare peers " ] ||
   fail "--list: $listed"
 expect_error() {
   local pattern="$1"

@@ -12,7 +12,7 @@ import sys
 
 # Columns every study's CSV has: the run, its options, the engine's stats, the validator, the audit.
 COMMON = ["run_key", "study", "input", "source", "size_asked", "variant", "engine", "round",
-          "status", "error", "hardware_threads", "oversubscribed", "seconds_wall", "points",
+          "status", "outcome", "error", "hardware_threads", "oversubscribed", "seconds_wall", "points",
           "inserted", "duplicates", "tetrahedra", "seconds.total", "seconds.location",
           "flips.S23", "flips.S44", "dag_nodes", "store_slots", "abandoned_insertions",
           "peak_rss_bytes", "bytes_per_point", "waits", "deadlocks", "give_ups", "burglaries",
@@ -41,7 +41,12 @@ FILLED = {
     "hull-loss": ("bounding", "aux-tet", ["hull_tetrahedra_lost",
                                           "validation.reflex_boundary_edges"]),
     "compare": ("engine", "cgal", ["seconds.total", "tetrahedra", "peak_rss_bytes"]),
+    "peers": ("variant", "cgal-epick", ["outcome", "validation.valid", "seconds.total",
+                                        "peer.version"]),
 }
+# Studies whose runs may end without a result (a peer that refuses, crashes or hangs is a finding):
+# every row has an outcome instead, and FILLED applies to the finished rows.
+OUTCOMES = {"peers": {"valid", "invalid", "refused", "crashed", "hung"}}
 MACHINE = ["cpu_model", "hardware_threads", "cpus_available", "physical_cores", "memory_gib", "compiler", "build_type", "cxx_flags",
            "commit", "date_utc", "command"]
 
@@ -74,13 +79,17 @@ def main():
         r = dict(zip(header, row))
         if r["study"] != name:
             fail("%s row %d belongs to study %s" % (path, i + 1, r["study"]))
-        if r["status"] != "ok":
+        if name in OUTCOMES:
+            if r["outcome"] not in OUTCOMES[name]:
+                fail("%s: run %s has outcome %r" % (path, r["run_key"], r["outcome"]))
+        elif r["status"] != "ok":
             fail("%s: run %s ended %s: %s" % (path, r["run_key"], r["status"], r["error"]))
         if r["run_key"] in keys:
             fail("%s: run %s twice" % (path, r["run_key"]))
         keys.add(r["run_key"])
     column, value, filled = FILLED[name]
-    kind = [dict(zip(header, row)) for row in rows if dict(zip(header, row))[column] == value]
+    kind = [dict(zip(header, row)) for row in rows
+            if dict(zip(header, row))[column] == value and dict(zip(header, row))["status"] == "ok"]
     if not kind:
         fail("%s has no run with %s = %s" % (path, column, value))
     for r in kind:

@@ -28,6 +28,11 @@ def ok_rows(path):
         return [r for r in csv.DictReader(f) if r["status"] == "ok"]
 
 
+def all_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
 def grouped(rows, keys):
     groups = OrderedDict()
     for r in rows:
@@ -230,23 +235,62 @@ def compare(rows, ax):
     ax.set_title("dtlab and CGAL, same points")
 
 
+def peers(rows, ax):
+    """Inputs x tools: each cell coloured by its worst outcome, with the counts written in it."""
+    tools = list(OrderedDict.fromkeys(r["variant"] for r in rows))
+    groups = grouped(rows, ["input", "size_asked"])
+    order = ["valid", "refused", "invalid", "crashed", "hung"]
+    colours = {"right": "#4caf50", "refused": "#ffb74d", "invalid": "#e53935",
+               "crashed": "#8e24aa", "hung": "#424242"}
+    no_mesh = {"coplanar", "collinear"}
+    ax.set_xlim(0, len(tools))
+    ax.set_ylim(0, len(groups))
+    for y, ((input_name, size), group) in enumerate(groups.items()):
+        for x, tool in enumerate(tools):
+            outcomes = [r["outcome"] for r in group if r["variant"] == tool]
+            if not outcomes:
+                continue
+            right = "refused" if input_name in no_mesh else "valid"
+            wrong = [o for o in outcomes if o != right]
+            worst = max(wrong, key=order.index) if wrong else "right"
+            ax.add_patch(plt.Rectangle((x, y), 1, 1, color=colours[worst], ec="white"))
+            text = "/".join("%d%s" % (outcomes.count(o), o[0]) for o in order if o in outcomes)
+            ax.text(x + 0.5, y + 0.5, text, ha="center", va="center", fontsize=7,
+                    color="white" if worst in ("crashed", "hung", "invalid", "right") else "black")
+    ax.set_xticks([i + 0.5 for i in range(len(tools))])
+    ax.set_xticklabels(tools, rotation=30, ha="right", fontsize=7)
+    ax.set_yticks([i + 0.5 for i in range(len(groups))])
+    ax.set_yticklabels(["%s:%s" % key for key in groups], fontsize=7)
+    ax.invert_yaxis()
+    for name, colour in colours.items():
+        ax.bar(0, 0, color=colour, label={"right": "right answer", "refused": "refused a valid input"}
+               .get(name, name))
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.set_title("Which tools survive which inputs (exact validator; v valid, r refused, "
+                 "i invalid, c crashed, h hung)", fontsize=9)
+
+
 PLOTS = {"burglary-errors": burglary_errors, "predicate-errors": predicate_errors,
          "speedup": speedup, "breakdown": breakdown, "flips": flips, "deadlocks": deadlocks,
-         "hull-loss": hull_loss, "compare": compare}
+         "hull-loss": hull_loss, "compare": compare, "peers": peers}
+
+# Studies whose plot shows the runs that ended without a result too.
+ALL_ROWS = {"peers"}
 
 
 def main():
     if len(sys.argv) != 4 or sys.argv[1] not in PLOTS:
         sys.exit("usage: plot_study.py {%s} STUDY.csv OUT.png" % ",".join(PLOTS))
     name, csv_path, png = sys.argv[1:]
-    rows = ok_rows(csv_path)
+    rows = all_rows(csv_path) if name in ALL_ROWS else ok_rows(csv_path)
     if not rows:
         sys.exit("plot_study.py: %s has no finished run to plot" % csv_path)
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+    height = 4.5 if name != "peers" else max(4.5, 1.2 + 0.28 * len(grouped(rows, ["input", "size_asked"])))
+    fig, ax = plt.subplots(figsize=(9 if name != "peers" else 10.5, height))
     PLOTS[name](rows, ax)
     for axis in fig.axes:
         handles, _ = axis.get_legend_handles_labels()
-        if handles:
+        if handles and axis.get_legend() is None:
             axis.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(png, dpi=110)

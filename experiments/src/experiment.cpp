@@ -18,10 +18,13 @@
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/point_readers.hpp"
 #include "machine_record.hpp"
+#include "peers/peer_tools.hpp"
 #include "run_columns.hpp"
 #include "run_executor.hpp"
+#include "shards.hpp"
+#include "studies/studies.hpp"
 #include "study.hpp"
-#include "summary.hpp"
+#include "study_output.hpp"
 
 extern char** environ;
 
@@ -29,11 +32,6 @@ namespace dtlab::experiments {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string from_env_or(const char* variable, const std::string& fallback) {
-  const char* value = std::getenv(variable);
-  return value != nullptr && *value != '\0' ? value : fallback;
-}
 
 engine::Location parse_location(const std::string& name) {
   if (name == "dag") return engine::Location::Dag;
@@ -49,6 +47,40 @@ engine::Distribution parse_distribution(const std::string& name) {
   }
   throw std::invalid_argument("unknown distribution " + name +
                               " (static | dynamic | strips | blocks | auto)");
+}
+
+// The peers study's tools and TetGen program, checked before any run: an unknown tool, a TetGen
+// that is not installed or a build without Qhull is an error here, not a column of failed runs.
+void resolve_tools(const Study& study, const ExperimentOptions& options, StudyParams& p) {
+  const bool peers = std::string(study.name) == "peers";
+  if (!peers && (!options.tools.empty() || !options.tetgen.empty())) {
+    throw std::invalid_argument(std::string("--tools and --tetgen are the peers study's; ") +
+                                study.name + " takes neither");
+  }
+  if (!peers) return;
+  const std::vector<std::string> known = peers_study_tools();
+  p.tools = options.tools.empty() ? known : options.tools;
+  std::string names;
+  for (const std::string& k : known) names += (names.empty() ? "" : ", ") + k;
+  for (const std::string& tool : p.tools) {
+    if (std::find(known.begin(), known.end(), tool) == known.end()) {
+      throw std::invalid_argument("--tools: unknown tool " + tool + " (known: " + names + ")");
+    }
+    if (tool.rfind("qhull", 0) == 0 && !qhull_available()) {
+      throw std::invalid_argument(tool +
+                                  ": this build has no Qhull (libqhull-dev, "
+                                  "scripts/setup.sh, then rebuild); or leave it out with "
+                                  "--tools");
+    }
+  }
+  p.tetgen_program =
+      !options.tetgen.empty() ? options.tetgen : from_env_or("DTLAB_TETGEN", "tetgen");
+  if (std::find(p.tools.begin(), p.tools.end(), "tetgen") != p.tools.end() &&
+      !program_found(p.tetgen_program)) {
+    throw std::invalid_argument("tetgen: no program " + p.tetgen_program +
+                                " (apt-get install tetgen, or --tetgen PATH; or leave it out "
+                                "with --tools)");
+  }
 }
 
 StudyParams resolve(const Study& study, const ExperimentOptions& options) {
@@ -72,6 +104,11 @@ StudyParams resolve(const Study& study, const ExperimentOptions& options) {
           ? options.data_dir
           : from_env_or("DTLAB_DATA_DIR", std::string(DTLAB_SOURCE_DIR) + "/../shared/data");
   p.hardware_threads = available_cpus();
+  if (options.timeout_seconds < 0) throw std::invalid_argument("--timeout: seconds >= 0");
+  p.timeout_seconds = options.timeout_seconds > 0
+                          ? options.timeout_seconds
+                          : (options.quick ? d.quick_timeout_seconds : d.timeout_seconds);
+  resolve_tools(study, options, p);
   for (const int t : p.threads) {
     if (t < 1 || t > 1024) throw std::invalid_argument("--threads: each count in [1, 1024]");
   }
@@ -111,30 +148,6 @@ class PointCache {
   std::string key_;
   std::vector<predicates::Point3> points_;
 };
-
-// Runs tools/plot_study.py through its #! line (Debian's python3, where python3-matplotlib
-// lives, not a python3 that PATH may name first), without a shell.
-bool plot(const std::string& tools_dir, const std::string& name, const fs::path& dir) {
-  const std::string script = tools_dir + "/plot_study.py";
-  if (!fs::is_regular_file(script)) {
-    std::fprintf(stderr, "dtlab: error: %s not found ($DTLAB_TOOLS_DIR)\n", script.c_str());
-    return false;
-  }
-  const std::string csv = (dir / (name + ".csv")).string();
-  const std::string png = (dir / (name + ".png")).string();
-  std::vector<char*> argv = {const_cast<char*>(script.c_str()), const_cast<char*>(name.c_str()),
-                             const_cast<char*>(csv.c_str()), const_cast<char*>(png.c_str()),
-                             nullptr};
-  std::fflush(nullptr);
-  pid_t pid = 0;
-  if (posix_spawn(&pid, script.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
-    return false;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
 
 // The rows a resumed study keeps: finished (status ok) runs of this plan. Rows of an older
 // version's CSV are mapped when their columns are a subset of today's (new cells stay empty).
@@ -197,15 +210,6 @@ Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& plann
   return r;
 }
 
-// "Runs measured at commit X" (or "at commits X, Y") from the rows' commit column.
-std::string row_commits(const CsvTable& table) {
-  std::set<std::string> commits;
-  for (const auto& row : table.rows) commits.insert(short_commit(table.get(row, "commit")));
-  std::string out;
-  for (const std::string& c : commits) out += (out.empty() ? "" : ", ") + c;
-  return commits.size() == 1 ? "commit " + out : "commits " + out;
-}
-
 }  // namespace
 
 std::vector<StudyListing> list_studies() {
@@ -215,10 +219,7 @@ std::vector<StudyListing> list_studies() {
 }
 
 int run_experiment(const std::string& name, const ExperimentOptions& options) {
-  const Study* study = nullptr;
-  for (const Study& s : all_studies()) {
-    if (name == s.name) study = &s;
-  }
+  const Study* study = find_study(name);
   if (study == nullptr) {
     std::fprintf(stderr, "dtlab: error: unknown study %s (dtlab experiment --list)\n",
                  name.c_str());
@@ -228,47 +229,57 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
     std::fprintf(stderr, "dtlab: error: --out DIR is required\n");
     return 2;
   }
+  const Shard shard = parse_shard(options.shard);
   const StudyParams params = resolve(*study, options);
   const std::vector<RunSpec> plan = study->plan(params);
+  std::vector<std::string> plan_keys;
   std::set<std::string> planned;
   for (const RunSpec& spec : plan) {
-    if (!planned.insert(run_key(spec)).second) {
-      throw std::logic_error("study " + name + " plans run " + run_key(spec) + " twice");
+    plan_keys.push_back(run_key(spec));
+    if (!planned.insert(plan_keys.back()).second) {
+      throw std::logic_error("study " + name + " plans run " + plan_keys.back() + " twice");
+    }
+  }
+  // This shard's runs: every count-th of the plan from its index, so the slices of any count
+  // cover the same plan exactly once.
+  std::vector<const RunSpec*> mine;
+  std::set<std::string> my_keys;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    if (shard.count == 0 || i % shard.count == static_cast<std::size_t>(shard.index - 1)) {
+      mine.push_back(&plan[i]);
+      my_keys.insert(plan_keys[i]);
     }
   }
 
   const fs::path dir(options.out_dir);
   fs::create_directories(dir);
-  const std::string source_dir = from_env_or("DTLAB_SOURCE_DIR", DTLAB_SOURCE_DIR);
-  {
-    std::ofstream machine(dir / "machine.json");
-    machine << machine_json(source_dir, options.command_line) << "\n";
-    if (!machine) throw std::runtime_error((dir / "machine.json").string() + ": cannot write");
-  }
+  const std::string source_dir = source_tree();
+  const std::string commit = git_commit(source_dir);
+  write_text(dir / "machine.json", machine_json(source_dir, options.command_line) + "\n");
+  write_text(dir / "plan.json", plan_json(name, shard, commit, params, plan_keys) + "\n");
 
   const fs::path csv_path = dir / (name + ".csv");
   std::set<std::string> finished;
   std::unique_ptr<CsvAppender> csv;
   {
     Resumed resumed;
-    if (options.resume) resumed = resume_rows(csv_path, planned);
+    if (options.resume) resumed = resume_rows(csv_path, my_keys);
     finished = std::move(resumed.finished);
     csv = std::make_unique<CsvAppender>(csv_path.string(), run_columns(), resumed.kept);
   }  // the kept rows are freed before any run: the children's memory does not hold them
 
   const std::size_t status_column = run_column("status");
   const std::size_t wall_column = run_column("seconds_wall");
-  const std::string commit = git_commit(source_dir);
   const auto start = std::chrono::steady_clock::now();
   PointCache cache;
   std::size_t done = 0;
   std::size_t failed = 0;
-  for (const RunSpec& spec : plan) {
+  for (const RunSpec* spec : mine) {
     ++done;
-    const std::string key = run_key(spec);
+    const std::string key = run_key(*spec);
     if (finished.count(key) != 0) continue;
     std::vector<std::string> row =
-        execute_isolated(name, spec, cache.get(spec), params.hardware_threads);
+        execute_isolated(name, *spec, cache.get(*spec), params.hardware_threads);
     row[run_column("commit")] = commit;
     row[run_column("finished_utc")] = utc_now();
     csv->append(row);
@@ -276,42 +287,26 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
     if (status != "ok") ++failed;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "[%zu/%zu %.0f s] %s: %s %s s\n", done, plan.size(), elapsed, key.c_str(),
+    std::fprintf(stderr, "[%zu/%zu %.0f s] %s: %s %s s\n", done, mine.size(), elapsed, key.c_str(),
                  status.c_str(), row[wall_column].c_str());
   }
   csv.reset();
-
-  const CsvTable table = read_csv(csv_path.string());
-  std::string md = "## " + name + ": " + study->summary + "\n\n";
-  md += "`" + options.command_line + "`  \n";
-  md += "Machine: " + machine_line() + ". Runs measured at " + row_commits(table) +
-        ". Seeds (rounds): " + std::to_string(params.seeds) + ". " +
-        std::to_string(table.rows.size()) + " runs.\n\n";
-  md += study->summarize(table);
-  md += failed_runs(table);
-  {
-    std::ofstream out(dir / (name + ".md"));
-    out << md;
-    if (!out) throw std::runtime_error((dir / (name + ".md")).string() + ": cannot write");
+  if (failed > 0) std::fprintf(stderr, "dtlab: %zu runs ended without a result\n", failed);
+  if (shard.count != 0) {
+    // A shard's rows are a slice: the summary and the plot come from the merge of every shard.
+    std::fprintf(stderr,
+                 "dtlab: shard %d/%d: wrote %s, plan.json and machine.json in %s; merge the "
+                 "shards with dtlab experiment merge OUT DIR...\n",
+                 shard.index, shard.count, csv_path.c_str(), dir.c_str());
+    return 0;
   }
-  std::printf("%s", md.c_str());
-  std::fflush(stdout);
+  SummaryHeader header;
+  header.command = "`" + options.command_line + "`";
+  header.machines = "Machine: " + machine_line() + ".";
+  header.seeds = params.seeds;
   std::fprintf(stderr, "dtlab: wrote %s, %s.md and machine.json in %s\n", csv_path.c_str(),
                name.c_str(), dir.c_str());
-  if (failed > 0) std::fprintf(stderr, "dtlab: %zu runs ended without a result\n", failed);
-  if (options.plot) {
-    const std::string tools =
-        !options.tools_dir.empty()
-            ? options.tools_dir
-            : from_env_or("DTLAB_TOOLS_DIR", std::string(DTLAB_SOURCE_DIR) + "/tools");
-    if (!plot(tools, name, dir)) {
-      std::fprintf(stderr,
-                   "dtlab: error: the plot failed (python3 with matplotlib: scripts/setup.sh); "
-                   "the CSV and the table are written\n");
-      return 2;
-    }
-  }
-  return 0;
+  return write_summary(*study, dir, header, options) ? 0 : 2;
 }
 
 }  // namespace dtlab::experiments

@@ -33,7 +33,8 @@ std::string proc_field(const char* file, const std::string& key) {
   return "";
 }
 
-// Standard output of a shell command (its first line), or empty.
+}  // namespace
+
 std::string command_output(const std::string& command) {
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return "";
@@ -45,6 +46,8 @@ std::string command_output(const std::string& command) {
   const std::size_t newline = out.find('\n');
   return newline == std::string::npos ? out : out.substr(0, newline);
 }
+
+namespace {
 
 // Distinct (physical id, core id) pairs of /proc/cpuinfo; the logical CPUs when it has none.
 unsigned physical_cores() {
@@ -130,6 +133,20 @@ std::string machine_line() {
                 proc_field("/proc/cpuinfo", "model name").c_str(), available_cpus(),
                 physical_cores(), memory_gib(), DTLAB_COMPILER_ID, __VERSION__, DTLAB_BUILD_TYPE);
   return text;
+}
+
+std::string machine_line(const nlohmann::json& record) {
+  const auto text = [&](const char* key) {
+    const auto it = record.find(key);
+    if (it == record.end()) return std::string("?");
+    return it->is_string() ? it->get<std::string>() : it->dump();
+  };
+  char memory[32];
+  std::snprintf(memory, sizeof memory, "%.0f",
+                record.value("memory_gib", nlohmann::json(0.0)).get<double>());
+  return text("cpu_model") + ", " + text("cpus_available") + " CPUs available (" +
+         text("physical_cores") + " cores), " + memory + " GiB, " + text("compiler") + ", " +
+         text("build_type");
 }
 
 }  // namespace dtlab::experiments

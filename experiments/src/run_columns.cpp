@@ -11,19 +11,22 @@ namespace dtlab::experiments {
 namespace {
 
 const std::vector<std::string> kRunColumns = {
-    "run_key",          "study",          "input",        "source", "size_asked",
-    "variant",          "engine",         "round",        "status", "error",
-    "hardware_threads", "oversubscribed", "seconds_wall", "commit", "finished_utc"};
+    "run_key",        "study",        "input",  "source",      "size_asked", "variant",
+    "engine",         "round",        "status", "outcome",     "error",      "hardware_threads",
+    "oversubscribed", "seconds_wall", "commit", "finished_utc"};
 
-// The options that stats_json does not write (it writes method, threads, distribution,
-// predicates, location, insertion, bounding, repair and seed).
+// The options that stats_json does not write, and the peers study's own count (it writes method,
+// threads, distribution, predicates, location, insertion, bounding, repair and seed).
 const std::vector<std::string> kOptionColumns = {"options.max_flips_per_insertion",
                                                  "options.max_location_steps",
                                                  "options.watchdog_seconds",
                                                  "options.max_tetrahedra",
                                                  "options.stress",
                                                  "options.validate",
-                                                 "options.audit"};
+                                                 "options.audit",
+                                                 "options.timeout_seconds",
+                                                 "peer.turned_tetrahedra",
+                                                 "peer.version"};
 
 std::vector<std::string> audit_columns() {
   std::vector<std::string> columns = {"audit.calls", "audit.wrong_sign"};
@@ -79,6 +82,11 @@ std::size_t run_column(const std::string& column) {
 
 std::string run_key(const RunSpec& spec) {
   const engine::TriangulateOptions& o = spec.options;
+  // A peer takes none of the engine's options: its tool (the variant) and seed name it.
+  if (spec.engine == Engine::Peer) {
+    return spec.input + ":" + std::to_string(spec.size) + "/" + spec.variant + "/peer/seed" +
+           std::to_string(o.seed) + "/round" + std::to_string(spec.round);
+  }
   // Parallel dtlab runs only (the key of every other run is as before): --resume must not take a
   // row of one distribution for another.
   const bool split = spec.engine == Engine::Dtlab && o.method != engine::Method::Sequential;

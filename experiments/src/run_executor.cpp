@@ -1,6 +1,7 @@
 #include "run_executor.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -10,10 +11,12 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "child_run.hpp"
+#include "peers/peer_tools.hpp"
 #include "run_columns.hpp"
 
 namespace dtlab::experiments {
@@ -63,53 +66,105 @@ bool write_all(int fd, const std::string& text) {
   return true;
 }
 
-std::string read_all(int fd) {
-  std::string text;
-  char buffer[4096];
-  for (;;) {
-    const ssize_t n = read(fd, buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
-  return text;
+// A run that ends without a result: its status, outcome (the peers study's classes) and reason.
+Cells failure(const char* status, const char* outcome, const std::string& error) {
+  return {{"status", status}, {"outcome", outcome}, {"error", error}};
 }
 
-[[noreturn]] void child(int fd, const RunSpec& spec, std::vector<predicates::Point3>& points) {
+[[noreturn]] void child(int fd, const RunSpec& spec, std::vector<predicates::Point3>& points,
+                        const std::string& scratch_dir) {
   // A study interrupted by killing the parent alone must not leave its run behind.
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   Cells cells;
   try {
-    cells = measure_run(spec, points);
+    cells = measure_run(spec, points, scratch_dir);
     cells["status"] = "ok";
-  } catch (const std::exception& e) {
-    cells.clear();
-    cells["status"] = "error";
-    cells["error"] = e.what();
+  } catch (const PeerCrashed& e) {
+    cells = failure("crashed", "crashed", e.what());
+  } catch (const PeerInvalidOutput& e) {
+    cells = failure("error", "invalid", e.what());
+  } catch (const std::exception& e) {  // the engine's or a peer's refusal, with its message
+    cells = failure("error", "refused", e.what());
   }
   _exit(write_all(fd, encode(cells)) ? 0 : 1);
 }
 
-// The child's verdict: its cells, or status "crashed" with the reason.
-Cells collect(pid_t pid, int fd) {
-  const std::string text = read_all(fd);
+// Reads the child's message until it closes the pipe or `timeout_seconds` (0: none) pass; false
+// on the timeout.
+bool read_until(int fd, double timeout_seconds, std::string& text) {
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  char buffer[4096];
+  for (;;) {
+    int wait_ms = -1;
+    if (timeout_seconds > 0) {
+      const double left =
+          std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+      if (left <= 0) return false;
+      wait_ms = static_cast<int>(left * 1000.0) + 1;
+    }
+    pollfd watched{fd, POLLIN, 0};
+    const int ready = poll(&watched, 1, wait_ms);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) continue;  // the deadline is checked above
+    const ssize_t n = read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return true;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+// The child's verdict: its cells, status "crashed" with the reason, or "timeout".
+Cells collect(pid_t pid, int fd, double timeout_seconds) {
+  std::string text;
+  const bool finished = read_until(fd, timeout_seconds, text);
   close(fd);
+  // The child leads its own process group: a tool's processes end with it.
+  if (!finished) kill(-pid, SIGKILL);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   Cells cells;
+  if (!finished) {
+    return failure(
+        "timeout", "hung",
+        "no result within the timeout (" + nlohmann::json(timeout_seconds).dump() + " s): killed");
+  }
   if (WIFSIGNALED(status)) {
-    return {{"status", "crashed"},
-            {"error", "the run ended by signal " + std::to_string(WTERMSIG(status))}};
+    const int signal = WTERMSIG(status);
+    return failure(
+        "crashed", "crashed",
+        "the run ended by signal " + std::to_string(signal) + " (" + sigabbrev_np(signal) + ")");
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !decode(text, cells)) {
-    return {{"status", "crashed"}, {"error", "the run's result did not arrive whole"}};
+    return failure("crashed", "crashed", "the run's result did not arrive whole");
   }
   for (const auto& [key, value] : cells) {
     if (key != "status") run_column(key);  // throws for a cell no column holds
   }
   return cells;
 }
+
+// A run's folder for a tool's files, removed however the run ended (a killed child cannot).
+class ScratchDir {
+ public:
+  explicit ScratchDir(bool wanted) {
+    if (!wanted) return;
+    std::string pattern = (std::filesystem::temp_directory_path() / "dtlab-run-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
 
 void add_run_cells(const std::string& study, const RunSpec& spec, unsigned hardware_threads,
                    Cells& cells) {
@@ -130,6 +185,11 @@ void add_run_cells(const std::string& study, const RunSpec& spec, unsigned hardw
   };
   fill("threads", std::to_string(o.threads));
   fill("seed", std::to_string(o.seed));
+  cells["options.timeout_seconds"] = nlohmann::json(spec.timeout_seconds).dump();
+  if (spec.engine == Engine::Peer) {
+    fill("method", spec.variant);
+    return;
+  }
   if (spec.engine != Engine::Dtlab) {
     fill("method", to_string(spec.engine));
     return;
@@ -156,6 +216,7 @@ std::vector<std::string> execute_isolated(const std::string& study, const RunSpe
                                           std::vector<predicates::Point3>& points,
                                           unsigned hardware_threads) {
   const auto start = std::chrono::steady_clock::now();
+  ScratchDir scratch(spec.engine == Engine::Peer);
   std::fflush(nullptr);  // nothing buffered is written twice
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed");
@@ -166,11 +227,13 @@ std::vector<std::string> execute_isolated(const std::string& study, const RunSpe
     throw std::runtime_error("fork failed");
   }
   if (pid == 0) {
+    setpgid(0, 0);
     close(fds[0]);
-    child(fds[1], spec, points);
+    child(fds[1], spec, points, scratch.path());
   }
+  setpgid(pid, pid);  // also here: the group exists before the parent may kill it
   close(fds[1]);
-  Cells cells = collect(pid, fds[0]);
+  Cells cells = collect(pid, fds[0], spec.timeout_seconds);
   cells["seconds_wall"] =
       nlohmann::json(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())

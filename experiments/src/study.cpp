@@ -15,6 +15,8 @@ const char* to_string(Engine e) {
       return "cgal";
     case Engine::CgalParallel:
       return "cgal-parallel";
+    case Engine::Peer:
+      return "peer";
   }
   return "?";
 }

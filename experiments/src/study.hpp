@@ -10,7 +10,8 @@
 
 namespace dtlab::experiments {
 
-enum class Engine { Dtlab, CgalSequential, CgalParallel };
+// Peer: another mesher of the `peers` study (peers/peer_tools.hpp), named by the run's variant.
+enum class Engine { Dtlab, CgalSequential, CgalParallel, Peer };
 const char* to_string(Engine e);
 
 // One run: an input, an engine and its options, and what to measure beside the stats.
@@ -24,6 +25,8 @@ struct RunSpec {
   bool validate = false;  // the exact validator (adaptive kernel) on the result
   bool audit = false;     // count predicate calls per stage; fast: signs that differ from exact
   int round = 0;          // repeated runs of the same configuration (timing studies)
+  double timeout_seconds = 0;  // the run is killed after this long (status "timeout"); 0: never
+  std::string tetgen_program;  // Engine::Peer "tetgen": the program to run
 };
 
 // The parameters after the study's defaults have filled what the user left out.
@@ -37,6 +40,9 @@ struct StudyParams {
   engine::Distribution distribution = engine::Distribution::Auto;
   std::string data_dir;
   unsigned hardware_threads = 1;
+  double timeout_seconds = 0;      // each run's limit; 0: none
+  std::vector<std::string> tools;  // the peers study's tools (peers/peer_tools.hpp, dtlab-*)
+  std::string tetgen_program;
 };
 
 // The defaults of a study, full and quick. A study with no thread counts takes no --threads.
@@ -50,6 +56,8 @@ struct StudyDefaults {
   std::vector<std::string> inputs;
   std::vector<std::string> quick_inputs;
   std::vector<engine::Location> locations;
+  double timeout_seconds = 0;  // each run's limit unless --timeout; 0: none
+  double quick_timeout_seconds = 0;
 };
 
 struct Study {

@@ -13,5 +13,8 @@ Study flips_study();
 Study deadlocks_study();
 Study hull_loss_study();
 Study compare_study();
+Study peers_study();
+// The tools the peers study knows (--tools), in its column order.
+std::vector<std::string> peers_study_tools();
 
 }  // namespace dtlab::experiments

@@ -1,0 +1,84 @@
+// TetGen through its program, as a user runs it: the points as a .node file in the run's scratch
+// folder, `tetgen -Q FILE.node`, then FILE.1.ele read back. The program runs in a child process
+// that dies with the run (PR_SET_PDEATHSIG), so the study's timeout ends it too.
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "dtlab/io/mesh_writers.hpp"
+#include "peer_tools.hpp"
+
+namespace dtlab::experiments {
+namespace {
+
+// The last non-empty line the program wrote (its error message, when it gives one).
+std::string last_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::string last;
+  while (std::getline(in, line)) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  }
+  return last.empty() ? "(no message)" : last;
+}
+
+[[noreturn]] void exec_tetgen(const std::string& program, const std::string& node,
+                              const std::string& output) {
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  const int fd = open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd >= 0) {
+    dup2(fd, STDOUT_FILENO);
+    dup2(fd, STDERR_FILENO);
+    close(fd);
+  }
+  const char* argv[] = {program.c_str(), "-Q", node.c_str(), nullptr};
+  execvp(program.c_str(), const_cast<char* const*>(argv));
+  std::fprintf(stderr, "cannot run %s: %s\n", program.c_str(), std::strerror(errno));
+  _exit(127);
+}
+
+}  // namespace
+
+PeerMesh run_tetgen_peer(const std::vector<predicates::Point3>& points, const std::string& program,
+                         const std::string& scratch_dir) {
+  namespace fs = std::filesystem;
+  const std::string node = (fs::path(scratch_dir) / "points.node").string();
+  const std::string output = (fs::path(scratch_dir) / "tetgen-output.txt").string();
+  io::write_node(node, points);
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) exec_tetgen(program, node, output);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    throw PeerCrashed("tetgen ended by signal " + std::to_string(signal) + " (" +
+                      sigabbrev_np(signal) + "): " + last_line(output));
+  }
+  if (WEXITSTATUS(status) != 0) {
+    throw PeerRefused("tetgen exit code " + std::to_string(WEXITSTATUS(status)) + ": " +
+                      last_line(output));
+  }
+  const std::string ele = (fs::path(scratch_dir) / "points.1.ele").string();
+  if (!fs::exists(ele)) throw PeerRefused("tetgen wrote no .ele: " + last_line(output));
+  PeerMesh mesh;
+  try {
+    mesh.tetrahedra = io::read_ele(ele, points.size(), 0);
+  } catch (const std::exception& e) {
+    // A file the program wrote but that is no mesh of these points: an invalid answer.
+    throw PeerInvalidOutput(std::string("tetgen wrote an unreadable .ele: ") + e.what());
+  }
+  return mesh;
+}
+
+}  // namespace dtlab::experiments
