@@ -4,7 +4,8 @@
 #    that kills itself (crashed, with the signal), one that writes a one-tetrahedron mesh
 #    (invalid: missing points), one that writes ids out of range (invalid: bad output), one that
 #    says why and exits 3 (refused, with its message), one that sleeps past --timeout (hung, its
-#    process and scratch folder gone afterwards), and the real program through a wrapper (valid).
+#    process and scratch folder gone afterwards), and the real program through a wrapper (valid),
+#    also on duplicates (whose output nodes TetGen numbers afresh).
 # 2. The installed tools on inputs where Debian 12's versions fail (tools/versions in
 #    docs/experiments.md): Qhull Qt returns an invalid mesh of a 6x6x6 grid and crashes on points
 #    scaled by 1e150, where CGAL on plain doubles loops (hung at --timeout 3).
@@ -58,7 +59,7 @@ run_stand_in one_tet invalid
 [ "$(cell "$dir/one_tet/peers.csv" uniform tetgen validation.missing_points)" -gt 0 ] ||
   fail "one_tet: no missing points counted"
 run_stand_in bad_ids invalid
-cell "$dir/bad_ids/peers.csv" uniform tetgen error | grep -q "unreadable .ele" || fail "bad_ids: no reason"
+cell "$dir/bad_ids/peers.csv" uniform tetgen error | grep -q "unreadable mesh" || fail "bad_ids: no reason"
 run_stand_in refuse refused
 cell "$dir/refuse/peers.csv" uniform tetgen error | grep -q "exit code 3: Error: the stand-in refuses" ||
   fail "refuse: the message is not in the row"
@@ -71,6 +72,11 @@ sleep 0.5
 if command -v tetgen >/dev/null; then
   run_stand_in honest valid
   [ "$(cell "$dir/honest/peers.csv" uniform tetgen validation.valid)" = true ] || fail "honest: not valid"
+  # TetGen drops duplicates and numbers its output nodes afresh: they are mapped back to input ids.
+  "$dtlab" experiment peers --tools tetgen --inputs duplicates --sizes 300 --seeds 1 --no-plot \
+    --out "$dir/dups" >/dev/null 2>&1 || fail "tetgen on duplicates"
+  [ "$(cell "$dir/dups/peers.csv" duplicates tetgen outcome)" = valid ] ||
+    fail "tetgen duplicates: $(cell "$dir/dups/peers.csv" duplicates tetgen outcome)"
 fi
 
 # The installed tools where they fail.

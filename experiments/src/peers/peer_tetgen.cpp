@@ -1,19 +1,22 @@
 // TetGen through its program, as a user runs it: the points as a .node file in the run's scratch
-// folder, `tetgen -Q FILE.node`, then FILE.1.ele read back. The program runs in a child process
+// folder, `tetgen -Q FILE.node`, then FILE.1.node and FILE.1.ele read back (the output nodes
+// mapped to the input ids by their coordinates). The program runs in a child process
 // that dies with the run (PR_SET_PDEATHSIG), so the study's timeout ends it too.
 #include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <map>
 
 #include "dtlab/io/mesh_writers.hpp"
+#include "dtlab/io/point_readers.hpp"
 #include "peer_tools.hpp"
 
 namespace dtlab::experiments {
@@ -45,6 +48,26 @@ std::string last_line(const std::string& path) {
   _exit(127);
 }
 
+// The input id of each output node: the first input point with exactly its coordinates (TetGen
+// writes 17 significant digits, which read back to the same double).
+std::vector<std::uint32_t> input_ids(const std::vector<predicates::Point3>& nodes,
+                                     const std::vector<predicates::Point3>& points) {
+  using Key = std::array<double, 3>;
+  std::map<Key, std::uint32_t> first;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    first.emplace(Key{points[i].x, points[i].y, points[i].z}, static_cast<std::uint32_t>(i));
+  }
+  std::vector<std::uint32_t> ids(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto it = first.find(Key{nodes[i].x, nodes[i].y, nodes[i].z});
+    if (it == first.end()) {
+      throw std::runtime_error("its output node " + std::to_string(i) + " is no input point");
+    }
+    ids[i] = it->second;
+  }
+  return ids;
+}
+
 }  // namespace
 
 PeerMesh run_tetgen_peer(const std::vector<predicates::Point3>& points, const std::string& program,
@@ -73,10 +96,19 @@ PeerMesh run_tetgen_peer(const std::vector<predicates::Point3>& points, const st
   if (!fs::exists(ele)) throw PeerRefused("tetgen wrote no .ele: " + last_line(output));
   PeerMesh mesh;
   try {
-    mesh.tetrahedra = io::read_ele(ele, points.size(), 0);
+    // TetGen numbers its output nodes afresh (it drops duplicates): its .ele refers to them.
+    const std::string out_node = (fs::path(scratch_dir) / "points.1.node").string();
+    const bool renumbered = fs::exists(out_node);
+    const std::vector<predicates::Point3> nodes = renumbered ? io::read_points(out_node) : points;
+    mesh.tetrahedra =
+        io::read_ele(ele, nodes.size(), renumbered ? io::node_index_base(out_node) : 0);
+    const std::vector<std::uint32_t> input_id = input_ids(nodes, points);
+    for (engine::Tetrahedron& tet : mesh.tetrahedra) {
+      for (std::uint32_t& v : tet) v = input_id[v];
+    }
   } catch (const std::exception& e) {
     // A file the program wrote but that is no mesh of these points: an invalid answer.
-    throw PeerInvalidOutput(std::string("tetgen wrote an unreadable .ele: ") + e.what());
+    throw PeerInvalidOutput(std::string("tetgen wrote an unreadable mesh: ") + e.what());
   }
   return mesh;
 }
