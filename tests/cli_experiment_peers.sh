@@ -9,6 +9,7 @@
 # 2. The installed tools on inputs where Debian 12's versions fail (tools/versions in
 #    docs/experiments.md): Qhull Qt returns an invalid mesh of a 6x6x6 grid and crashes on points
 #    scaled by 1e150, where CGAL on plain doubles loops (hung at --timeout 3).
+#    --resume keeps those rows (they are results) instead of running them again.
 # 3. Bad options: an unknown tool, a missing TetGen, --tools for another study: exit 2 and a message.
 set -euo pipefail
 dtlab="$1"
@@ -90,6 +91,10 @@ csv="$dir/real/peers.csv"
 [ "$(cell "$csv" huge cgal-epick outcome)" = valid ] || fail "cgal-epick huge: $(cell "$csv" huge cgal-epick outcome)"
 grep -qE '^\| grid \| [0-9,]+ \| yes \|' "$dir/real/peers.md" || fail "no grid row in the summary"
 echo "installed tools: qhull-Qt grid invalid, huge crashed; cgal-doubles huge hung; cgal-epick valid"
+# A refused, crashed or hung peer is a result: --resume keeps it and runs nothing.
+"$dtlab" experiment peers --tools qhull-Qt,cgal-doubles,cgal-epick --inputs grid,huge --sizes 300 \
+  --seeds 1 --timeout 3 --no-plot --resume --out "$dir/real" >/dev/null 2>"$dir/resume.err"
+[ "$(grep -c '^\[' "$dir/resume.err" || true)" -eq 0 ] || fail "--resume ran peers again: $(cat "$dir/resume.err")"
 
 # Bad options.
 expect_error() {  # MESSAGE ARGS...

@@ -19,8 +19,9 @@ declare -A args=(
   [deadlocks]=""
   [hull-loss]=""
   [compare]=""
+  [peers]=""
 )
-order=(burglary-errors burglary-errors-1m predicate-errors speedup speedup-1m breakdown flips deadlocks hull-loss compare)
+order=(burglary-errors burglary-errors-1m predicate-errors speedup speedup-1m breakdown flips deadlocks hull-loss compare peers)
 [ $# -gt 0 ] && order=("$@")
 for run in "${order[@]}"; do
   study="${run%-1m}"

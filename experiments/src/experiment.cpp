@@ -156,7 +156,10 @@ struct Resumed {
   std::set<std::string> finished;
 };
 
-Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& planned) {
+// `keep_failed`: a run that ended without a result but with an outcome (the peers study's refused,
+// crashed and hung tools) is a result too, and is kept like a finished one.
+Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& planned,
+                    bool keep_failed) {
   Resumed r;
   if (!fs::exists(csv_path) || fs::file_size(csv_path) == 0) return r;
   std::size_t cut = 0;
@@ -183,7 +186,8 @@ Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& plann
         !distribution.empty() && !key.ends_with(suffix)) {
       key += suffix;
     }
-    if (mapped[run_column("status")] != "ok") {
+    const bool has_outcome = keep_failed && !mapped[run_column("outcome")].empty();
+    if (mapped[run_column("status")] != "ok" && !has_outcome) {
       ++failed;
     } else if (planned.count(key) == 0) {
       other_plan.push_back(std::move(mapped));
@@ -263,7 +267,7 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
   std::unique_ptr<CsvAppender> csv;
   {
     Resumed resumed;
-    if (options.resume) resumed = resume_rows(csv_path, my_keys);
+    if (options.resume) resumed = resume_rows(csv_path, my_keys, study->failures_are_results);
     finished = std::move(resumed.finished);
     csv = std::make_unique<CsvAppender>(csv_path.string(), run_columns(), resumed.kept);
   }  // the kept rows are freed before any run: the children's memory does not hold them

@@ -67,6 +67,9 @@ struct Study {
   std::vector<RunSpec> (*plan)(const StudyParams& params);
   // Markdown (headings, tables, short notes) from every row of the CSV.
   std::string (*summarize)(const CsvTable& rows);
+  // A run that ends without a result is a finding (a peer that refuses, crashes or hangs):
+  // --resume keeps it rather than running it again.
+  bool failures_are_results = false;
 };
 
 const std::vector<Study>& all_studies();

@@ -94,11 +94,14 @@ std::string violations(const CsvTable& t, const std::vector<const Row*>& rows) {
   return out;
 }
 
+// The tools in the rows, in the study's column order (--tools may pick some; a resumed CSV's rows
+// come in the order they ran).
 std::vector<std::string> tools_in(const CsvTable& t) {
   std::vector<std::string> tools;
-  for (const Row& r : t.rows) {
-    const std::string& v = t.get(r, "variant");
-    if (std::find(tools.begin(), tools.end(), v) == tools.end()) tools.push_back(v);
+  for (const std::string& known : peers_study_tools()) {
+    const bool present = std::any_of(t.rows.begin(), t.rows.end(),
+                                     [&](const Row& r) { return t.get(r, "variant") == known; });
+    if (present) tools.push_back(known);
   }
   return tools;
 }
@@ -187,7 +190,8 @@ Study peers_study() {
            60.0,
            20.0},
           plan,
-          summarize};
+          summarize,
+          true};
 }
 
 std::vector<std::string> peers_study_tools() {
