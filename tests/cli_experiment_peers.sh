@@ -7,7 +7,7 @@
 #    process and scratch folder gone afterwards), and the real program through a wrapper (valid),
 #    also on duplicates (whose output nodes TetGen numbers afresh).
 # 2. The installed tools on inputs where Debian 12's versions fail (tools/versions in
-#    docs/experiments.md): Qhull Qt returns an invalid mesh of a 6x6x6 grid and crashes on points
+#    docs/experiments.md): Qhull Qt returns an invalid mesh of a 7x7x7 grid and crashes on points
 #    scaled by 1e150, where CGAL on plain doubles loops (hung at --timeout 3).
 #    --resume keeps those rows (they are results) instead of running them again.
 # 3. Bad options: an unknown tool, a missing TetGen, --tools for another study: exit 2 and a message.
@@ -110,4 +110,5 @@ expect_error() {  # MESSAGE ARGS...
 expect_error "unknown tool nosuch" peers --tools nosuch --quick
 expect_error "no program $dir/bin/absent" peers --tools tetgen --tetgen "$dir/bin/absent" --quick
 expect_error "takes neither" flips --tools tetgen --quick
+expect_error "peers takes no --location" peers --location dag --quick
 echo "cli_experiment_peers: all outcomes classified"

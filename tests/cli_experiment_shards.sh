@@ -3,7 +3,8 @@
 # installed, else background jobs) and merged has the unsharded run's plan keys and summary
 # tables (their headers and rows' first columns; the figures are timings and differ); merge
 # refuses a missing, doubled or foreign shard, a whole study and a shard with a run missing (exit 2,
-# a message naming it); --resume runs only that shard's missing run, and the merge then succeeds;
+# a message naming it), a shard from another commit, a run in the wrong shard and a merge into a
+# shard's own folder; --resume runs only that shard's missing run, and the merge then succeeds;
 # tools/cluster/experiment.sbatch's tasks (Slurm's variables set by hand) give shards that merge.
 set -euo pipefail
 dtlab="$1"
@@ -62,6 +63,25 @@ refuse "is a whole study, not a shard" "$dir/s1" "$dir/s2" "$dir/whole"
 refuse 'is foreign: field "parameters" of its plan.json differs' "$dir/s1" "$dir/s2" "$dir/foreign"
 "$dtlab" experiment hull-loss --quick --shard 3/3 --out "$dir/other" --no-plot >/dev/null 2>&1
 refuse 'is foreign: field "study" of its plan.json differs' "$dir/s1" "$dir/s2" "$dir/other"
+
+# A shard from another commit (its plan.json says so), and a run in the wrong shard's CSV.
+cp -r "$dir/s3" "$dir/s3commit"
+python3 - "$dir/s3commit/plan.json" <<'PY'
+import json, sys
+plan = json.load(open(sys.argv[1]))
+plan["commit"] = "0" * 40
+json.dump(plan, open(sys.argv[1], "w"))
+PY
+refuse 'is foreign: field "commit" of its plan.json differs' "$dir/s1" "$dir/s2" "$dir/s3commit"
+cp -r "$dir/s3" "$dir/s3extra"
+sed -n 2p "$dir/s1/$study.csv" >>"$dir/s3extra/$study.csv"
+refuse "belongs to another shard" "$dir/s1" "$dir/s2" "$dir/s3extra"
+set +e
+"$dtlab" experiment merge "$dir/s1" "$dir/s1" "$dir/s2" "$dir/s3" >/dev/null 2>"$dir/refuse.err"
+code=$?
+set -e
+[ "$code" -eq 2 ] && grep -q "is one of the shards' folders" "$dir/refuse.err" ||
+  fail "merge into a shard's own folder: exit $code: $(cat "$dir/refuse.err")"
 
 # A shard interrupted before its last run: the merge names the run, --resume runs only it.
 head -n -1 "$dir/s2/$study.csv" >"$dir/cut.csv" && mv "$dir/cut.csv" "$dir/s2/$study.csv"

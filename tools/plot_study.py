@@ -235,13 +235,19 @@ def compare(rows, ax):
     ax.set_title("dtlab and CGAL, same points")
 
 
+# The peers study's column order (studies/peers.cpp).
+PEER_TOOLS = ["cgal-epick", "cgal-doubles", "qhull-Qt", "qhull-QJ", "tetgen", "dtlab-fast",
+              "dtlab-adaptive", "dtlab-filtered"]
+
+
 def peers(rows, ax):
     """Inputs x tools: each cell coloured by its worst outcome, with the counts written in it."""
-    tools = list(OrderedDict.fromkeys(r["variant"] for r in rows))
+    present = set(r["variant"] for r in rows)
+    tools = [t for t in PEER_TOOLS if t in present] + sorted(present - set(PEER_TOOLS))
     groups = grouped(rows, ["input", "size_asked"])
-    order = ["valid", "refused", "invalid", "crashed", "hung"]
+    order = ["valid", "refused", "invalid", "crashed", "hung"]  # worst last
     colours = {"right": "#4caf50", "refused": "#ffb74d", "invalid": "#e53935",
-               "crashed": "#8e24aa", "hung": "#424242"}
+               "crashed": "#8e24aa", "hung": "#424242", "valid": "#e53935"}
     no_mesh = {"coplanar", "collinear"}
     ax.set_xlim(0, len(tools))
     ax.set_ylim(0, len(groups))
@@ -262,9 +268,11 @@ def peers(rows, ax):
     ax.set_yticks([i + 0.5 for i in range(len(groups))])
     ax.set_yticklabels(["%s:%s" % key for key in groups], fontsize=7)
     ax.invert_yaxis()
+    labels = {"right": "right answer", "refused": "refused a valid input",
+              "invalid": "invalid mesh (or a mesh of points that have none)"}
     for name, colour in colours.items():
-        ax.bar(0, 0, color=colour, label={"right": "right answer", "refused": "refused a valid input"}
-               .get(name, name))
+        if name != "valid":
+            ax.bar(0, 0, color=colour, label=labels.get(name, name))
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title("Which tools survive which inputs (exact validator; v valid, r refused, "
                  "i invalid, c crashed, h hung)", fontsize=9)

@@ -81,7 +81,7 @@ Cells measure_peer(const RunSpec& spec, const std::vector<predicates::Point3>& p
   cells["method"] = spec.variant;
   cells["seed"] = std::to_string(spec.options.seed);
   cells["peer.turned_tetrahedra"] = std::to_string(turned);
-  cells["peer.version"] = peer_version(spec.variant, spec.tetgen_program);
+  cells["peer.version"] = spec.tool_version;
   put_validation(engine::validate(points, mesh.tetrahedra, engine::ValidateWith::Adaptive), cells);
   return cells;
 }

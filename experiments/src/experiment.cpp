@@ -11,7 +11,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 
@@ -58,28 +60,45 @@ void resolve_tools(const Study& study, const ExperimentOptions& options, StudyPa
                                 study.name + " takes neither");
   }
   if (!peers) return;
+  if (!options.locations.empty() || !options.distribution.empty()) {
+    throw std::invalid_argument(
+        "peers takes no --location or --distribution: its dtlab runs are sequential, with the "
+        "walk and cavities (dtlab triangulate's default)");
+  }
+  p.tetgen_program =
+      !options.tetgen.empty() ? options.tetgen : from_env_or("DTLAB_TETGEN", "tetgen");
+  const auto missing = [&](const std::string& tool) -> std::string {
+    if (tool.rfind("qhull", 0) == 0 && !qhull_available()) {
+      return "this build has no Qhull (libqhull-dev, scripts/setup.sh, then rebuild)";
+    }
+    if (tool == "tetgen" && !program_found(p.tetgen_program)) {
+      return "no program " + p.tetgen_program + " (apt-get install tetgen, or --tetgen PATH)";
+    }
+    return "";
+  };
   const std::vector<std::string> known = peers_study_tools();
-  p.tools = options.tools.empty() ? known : options.tools;
   std::string names;
   for (const std::string& k : known) names += (names.empty() ? "" : ", ") + k;
+  if (options.tools.empty()) {
+    // Every tool this machine has; the others are named, and left out.
+    for (const std::string& tool : known) {
+      const std::string why = missing(tool);
+      if (why.empty()) {
+        p.tools.push_back(tool);
+      } else {
+        std::fprintf(stderr, "dtlab: peers: %s left out: %s\n", tool.c_str(), why.c_str());
+      }
+    }
+    return;
+  }
+  p.tools = options.tools;
   for (const std::string& tool : p.tools) {
     if (std::find(known.begin(), known.end(), tool) == known.end()) {
       throw std::invalid_argument("--tools: unknown tool " + tool + " (known: " + names + ")");
     }
-    if (tool.rfind("qhull", 0) == 0 && !qhull_available()) {
-      throw std::invalid_argument(tool +
-                                  ": this build has no Qhull (libqhull-dev, "
-                                  "scripts/setup.sh, then rebuild); or leave it out with "
-                                  "--tools");
-    }
-  }
-  p.tetgen_program =
-      !options.tetgen.empty() ? options.tetgen : from_env_or("DTLAB_TETGEN", "tetgen");
-  if (std::find(p.tools.begin(), p.tools.end(), "tetgen") != p.tools.end() &&
-      !program_found(p.tetgen_program)) {
-    throw std::invalid_argument("tetgen: no program " + p.tetgen_program +
-                                " (apt-get install tetgen, or --tetgen PATH; or leave it out "
-                                "with --tools)");
+    const std::string why = missing(tool);
+    if (!why.empty())
+      throw std::invalid_argument(tool + ": " + why + "; or leave it out of --tools");
   }
 }
 
@@ -149,6 +168,17 @@ class PointCache {
   std::vector<predicates::Point3> points_;
 };
 
+// Each run's point set (source and seed), numbered in first-seen order.
+std::vector<int> point_set_groups(const std::vector<RunSpec>& plan) {
+  std::map<std::string, int> number;
+  std::vector<int> groups;
+  for (const RunSpec& spec : plan) {
+    const std::string key = spec.source + "#" + std::to_string(spec.options.seed);
+    groups.push_back(number.emplace(key, static_cast<int>(number.size())).first->second);
+  }
+  return groups;
+}
+
 // The rows a resumed study keeps: finished (status ok) runs of this plan. Rows of an older
 // version's CSV are mapped when their columns are a subset of today's (new cells stay empty).
 struct Resumed {
@@ -158,8 +188,11 @@ struct Resumed {
 
 // `keep_failed`: a run that ended without a result but with an outcome (the peers study's refused,
 // crashed and hung tools) is a result too, and is kept like a finished one.
+// A row run with another --timeout is of other parameters (a kept "hung" row must have had this
+// timeout).
 Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& planned,
-                    bool keep_failed) {
+                    bool keep_failed, double timeout_seconds) {
+  const std::string timeout = nlohmann::json(timeout_seconds).dump();
   Resumed r;
   if (!fs::exists(csv_path) || fs::file_size(csv_path) == 0) return r;
   std::size_t cut = 0;
@@ -189,7 +222,9 @@ Resumed resume_rows(const fs::path& csv_path, const std::set<std::string>& plann
     const bool has_outcome = keep_failed && !mapped[run_column("outcome")].empty();
     if (mapped[run_column("status")] != "ok" && !has_outcome) {
       ++failed;
-    } else if (planned.count(key) == 0) {
+    } else if (planned.count(key) == 0 ||
+               (!mapped[run_column("options.timeout_seconds")].empty() &&
+                mapped[run_column("options.timeout_seconds")] != timeout)) {
       other_plan.push_back(std::move(mapped));
     } else if (r.finished.insert(key).second) {
       r.kept.push_back(std::move(mapped));
@@ -244,12 +279,14 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
       throw std::logic_error("study " + name + " plans run " + plan_keys.back() + " twice");
     }
   }
-  // This shard's runs: every count-th of the plan from its index, so the slices of any count
-  // cover the same plan exactly once.
+  // This shard's runs: the plan cut into groups of runs on the same points (source and seed, in
+  // first-seen order), every count-th group from the shard's index; so the slices of any count
+  // cover the same plan exactly once, and a shard generates or reads each point set once.
+  const std::vector<int> groups = point_set_groups(plan);
   std::vector<const RunSpec*> mine;
   std::set<std::string> my_keys;
   for (std::size_t i = 0; i < plan.size(); ++i) {
-    if (shard.count == 0 || i % shard.count == static_cast<std::size_t>(shard.index - 1)) {
+    if (shard.count == 0 || groups[i] % shard.count == shard.index - 1) {
       mine.push_back(&plan[i]);
       my_keys.insert(plan_keys[i]);
     }
@@ -260,14 +297,15 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
   const std::string source_dir = source_tree();
   const std::string commit = git_commit(source_dir);
   write_text(dir / "machine.json", machine_json(source_dir, options.command_line) + "\n");
-  write_text(dir / "plan.json", plan_json(name, shard, commit, params, plan_keys) + "\n");
+  write_text(dir / "plan.json", plan_json(name, shard, commit, params, plan_keys, groups) + "\n");
 
   const fs::path csv_path = dir / (name + ".csv");
   std::set<std::string> finished;
   std::unique_ptr<CsvAppender> csv;
   {
     Resumed resumed;
-    if (options.resume) resumed = resume_rows(csv_path, my_keys, study->failures_are_results);
+    if (options.resume)
+      resumed = resume_rows(csv_path, my_keys, study->failures_are_results, params.timeout_seconds);
     finished = std::move(resumed.finished);
     csv = std::make_unique<CsvAppender>(csv_path.string(), run_columns(), resumed.kept);
   }  // the kept rows are freed before any run: the children's memory does not hold them
@@ -282,8 +320,10 @@ int run_experiment(const std::string& name, const ExperimentOptions& options) {
     ++done;
     const std::string key = run_key(*spec);
     if (finished.count(key) != 0) continue;
+    RunSpec run = *spec;
+    run.timeout_seconds = params.timeout_seconds;
     std::vector<std::string> row =
-        execute_isolated(name, *spec, cache.get(*spec), params.hardware_threads);
+        execute_isolated(name, run, cache.get(run), params.hardware_threads);
     row[run_column("commit")] = commit;
     row[run_column("finished_utc")] = utc_now();
     csv->append(row);

@@ -17,6 +17,7 @@
 
 #include "child_run.hpp"
 #include "peers/peer_tools.hpp"
+#include "process_status.hpp"
 #include "run_columns.hpp"
 
 namespace dtlab::experiments {
@@ -81,6 +82,8 @@ Cells failure(const char* status, const char* outcome, const std::string& error)
     cells["status"] = "ok";
   } catch (const PeerCrashed& e) {
     cells = failure("crashed", "crashed", e.what());
+  } catch (const std::bad_alloc&) {
+    cells = failure("crashed", "crashed", "out of memory (std::bad_alloc)");
   } catch (const PeerInvalidOutput& e) {
     cells = failure("error", "invalid", e.what());
   } catch (const std::exception& e) {  // the engine's or a peer's refusal, with its message
@@ -121,9 +124,7 @@ Cells collect(pid_t pid, int fd, double timeout_seconds) {
   close(fd);
   // The child leads its own process group: a tool's processes end with it.
   if (!finished) kill(-pid, SIGKILL);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = wait_for(pid);
   Cells cells;
   if (!finished) {
     return failure(
@@ -131,10 +132,8 @@ Cells collect(pid_t pid, int fd, double timeout_seconds) {
         "no result within the timeout (" + nlohmann::json(timeout_seconds).dump() + " s): killed");
   }
   if (WIFSIGNALED(status)) {
-    const int signal = WTERMSIG(status);
-    return failure(
-        "crashed", "crashed",
-        "the run ended by signal " + std::to_string(signal) + " (" + sigabbrev_np(signal) + ")");
+    return failure("crashed", "crashed",
+                   "the run ended by signal " + signal_name(WTERMSIG(status)));
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !decode(text, cells)) {
     return failure("crashed", "crashed", "the run's result did not arrive whole");

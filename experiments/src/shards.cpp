@@ -80,16 +80,25 @@ std::string shard_name(const Shard& s) {
 void check_same_study(const std::vector<ShardDir>& shards) {
   const ShardDir& first = shards.front();
   for (const ShardDir& s : shards) {
-    for (const char* field : {"study", "commit", "parameters", "plan"}) {
-      if (s.plan.at(field) != first.plan.at(field)) {
-        throw std::invalid_argument(
-            s.dir.string() + " (shard " + shard_name(s.shard) + ") is foreign: field \"" + field +
-            "\" of its plan.json differs from " + first.dir.string() + "'s" +
-            (std::string(field) == "commit" || std::string(field) == "study"
-                 ? " (" + s.plan.at(field).get<std::string>() + " against " +
-                       first.plan.at(field).get<std::string>() + ")"
-                 : ""));
+    for (const char* field : {"study", "commit", "parameters", "plan", "groups"}) {
+      const json& mine = s.plan.at(field);
+      const json& theirs = first.plan.at(field);
+      if (mine == theirs) continue;
+      std::string detail;
+      if (mine.is_string())
+        detail = " (" + mine.get<std::string>() + " against " + theirs.get<std::string>() + ")";
+      if (mine.is_object()) {
+        for (const auto& [key, value] : mine.items()) {
+          if (!theirs.contains(key) || theirs.at(key) != value) {
+            detail += (detail.empty() ? " (" : ", ") + key + ": " + value.dump() + " against " +
+                      (theirs.contains(key) ? theirs.at(key).dump() : "none");
+          }
+        }
+        if (!detail.empty()) detail += ")";
       }
+      throw std::invalid_argument(
+          s.dir.string() + " (shard " + shard_name(s.shard) + ") is foreign: field \"" + field +
+          "\" of its plan.json differs from " + first.dir.string() + "'s" + detail);
     }
     if (s.shard.count != first.shard.count) {
       throw std::invalid_argument(s.dir.string() + " is shard " + shard_name(s.shard) + ", " +
@@ -130,7 +139,8 @@ Shard parse_shard(const std::string& text) {
 }
 
 std::string plan_json(const std::string& study, const Shard& shard, const std::string& commit,
-                      const StudyParams& params, const std::vector<std::string>& plan_keys) {
+                      const StudyParams& params, const std::vector<std::string>& plan_keys,
+                      const std::vector<int>& groups) {
   json j;
   j["study"] = study;
   j["shard"] =
@@ -138,6 +148,7 @@ std::string plan_json(const std::string& study, const Shard& shard, const std::s
   j["commit"] = commit;
   j["parameters"] = parameters_json(params);
   j["plan"] = plan_keys;
+  j["groups"] = groups;
   return j.dump(1);
 }
 
@@ -145,6 +156,14 @@ int merge_experiment(const std::vector<std::string>& dirs, const ExperimentOptio
   if (options.out_dir.empty() || dirs.empty()) {
     std::fprintf(stderr, "dtlab: error: dtlab experiment merge OUT DIR... (at least one DIR)\n");
     return 2;
+  }
+  std::error_code ignored;
+  for (const std::string& d : dirs) {
+    if (fs::equivalent(options.out_dir, d, ignored)) {
+      throw std::invalid_argument("OUT " + options.out_dir +
+                                  " is one of the shards' folders: "
+                                  "merge into another folder");
+    }
   }
   std::vector<ShardDir> shards;
   for (const std::string& d : dirs) shards.push_back(read_shard(d));
@@ -158,6 +177,10 @@ int merge_experiment(const std::vector<std::string>& dirs, const ExperimentOptio
   // Every planned run exactly once, from the shard whose slice it is.
   const std::vector<std::string> plan =
       shards.front().plan.at("plan").get<std::vector<std::string>>();
+  const std::vector<int> groups = shards.front().plan.at("groups").get<std::vector<int>>();
+  const std::string commit = shards.front().plan.at("commit").get<std::string>();
+  if (groups.size() != plan.size())
+    throw std::invalid_argument("plan.json: groups and plan differ in length");
   std::map<std::string, std::size_t> position;
   for (std::size_t i = 0; i < plan.size(); ++i) position[plan[i]] = i;
   std::vector<std::vector<std::string>> rows(plan.size());
@@ -178,12 +201,16 @@ int merge_experiment(const std::vector<std::string>& dirs, const ExperimentOptio
       if (it == position.end()) {
         throw std::invalid_argument(csv.string() + ": run " + key + " is not in the plan");
       }
-      if (it->second % static_cast<std::size_t>(s.shard.count) !=
-          static_cast<std::size_t>(s.shard.index - 1)) {
+      if (groups[it->second] % s.shard.count != s.shard.index - 1) {
         throw std::invalid_argument(csv.string() + ": run " + key + " belongs to another shard");
       }
       if (!rows[it->second].empty()) {
         throw std::invalid_argument(csv.string() + ": run " + key + " twice");
+      }
+      if (table.get(row, "commit") != commit) {
+        throw std::invalid_argument(csv.string() + ": run " + key + " was measured at commit " +
+                                    table.get(row, "commit") + ", the shards' plan at " + commit +
+                                    ": run that shard again without --resume");
       }
       rows[it->second] = row;
       from[it->second] = s.dir.string();
@@ -194,7 +221,7 @@ int merge_experiment(const std::vector<std::string>& dirs, const ExperimentOptio
   for (std::size_t i = 0; i < plan.size(); ++i) {
     if (!rows[i].empty()) continue;
     if (missing++ == 0) {
-      const ShardDir& owner = shards[i % shards.size()];
+      const ShardDir& owner = shards[static_cast<std::size_t>(groups[i]) % shards.size()];
       example = plan[i] + " (shard " + shard_name(owner.shard) + ", " + owner.dir.string() + ")";
     }
   }

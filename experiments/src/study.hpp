@@ -27,6 +27,7 @@ struct RunSpec {
   int round = 0;          // repeated runs of the same configuration (timing studies)
   double timeout_seconds = 0;  // the run is killed after this long (status "timeout"); 0: never
   std::string tetgen_program;  // Engine::Peer "tetgen": the program to run
+  std::string tool_version;    // Engine::Peer: the tool's version, for its row
 };
 
 // The parameters after the study's defaults have filled what the user left out.
@@ -73,6 +74,8 @@ struct Study {
 };
 
 const std::vector<Study>& all_studies();
+// The study named `name`; nullptr when there is none.
+const Study* find_study(const std::string& name);
 
 // Resolves a model name (a file in the data directory, with or without its extension) or a path;
 // empty when it is neither.

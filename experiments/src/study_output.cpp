@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "machine_record.hpp"
+#include "process_status.hpp"
 #include "summary.hpp"
 
 extern char** environ;
@@ -39,9 +40,7 @@ bool plot(const std::string& tools_dir, const std::string& name, const fs::path&
   if (posix_spawn(&pid, script.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
     return false;
   }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = wait_for(pid);
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
@@ -55,13 +54,6 @@ std::string row_commits(const CsvTable& table) {
 }
 
 }  // namespace
-
-const Study* find_study(const std::string& name) {
-  for (const Study& s : all_studies()) {
-    if (name == s.name) return &s;
-  }
-  return nullptr;
-}
 
 std::string from_env_or(const char* variable, const std::string& fallback) {
   const char* value = std::getenv(variable);

@@ -9,8 +9,6 @@
 
 namespace dtlab::experiments {
 
-const Study* find_study(const std::string& name);
-
 // $VARIABLE when set and not empty, else `fallback`.
 std::string from_env_or(const char* variable, const std::string& fallback);
 // The source tree (for the commit and tools/): $DTLAB_SOURCE_DIR or the one this was built from.

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 
+#include "../process_status.hpp"
 #include "dtlab/io/mesh_writers.hpp"
 #include "dtlab/io/point_readers.hpp"
 #include "peer_tools.hpp"
@@ -80,13 +81,10 @@ PeerMesh run_tetgen_peer(const std::vector<predicates::Point3>& points, const st
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) exec_tetgen(program, node, output);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = wait_for(pid);
   if (WIFSIGNALED(status)) {
-    const int signal = WTERMSIG(status);
-    throw PeerCrashed("tetgen ended by signal " + std::to_string(signal) + " (" +
-                      sigabbrev_np(signal) + "): " + last_line(output));
+    throw PeerCrashed("tetgen ended by signal " + signal_name(WTERMSIG(status)) + ": " +
+                      last_line(output));
   }
   if (WEXITSTATUS(status) != 0) {
     throw PeerRefused("tetgen exit code " + std::to_string(WEXITSTATUS(status)) + ": " +
