@@ -13,7 +13,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 study=predicate-errors
-args=(experiment "$study" --quick --inputs uniform,grid,sphere)
+args=(experiment "$study" --quick --inputs uniform,grid,sphere --sizes 150)
 keys() { python3 -c 'import csv,sys; print("\n".join(sorted(r["run_key"] for r in csv.DictReader(open(sys.argv[1])))))' "$1"; }
 # The tables' shape: each header line, and each row's first two cells.
 shape() { grep '^| ' "$1" | sed -E 's/^(\|[^|]*\|[^|]*\|).*/\1/'; grep '^| input' "$1"; }

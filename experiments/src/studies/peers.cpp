@@ -187,7 +187,8 @@ Study peers_study() {
            {300},
            {"uniform", "normal", "cluster", "grid", "sphere", "planes", "cospherical", "duplicates",
             "near-duplicates", "coplanar", "collinear", "lattice", "tiny", "huge"},
-           {"uniform", "grid", "coplanar", "huge"},
+           // No input where a tool hangs: --quick stays short (the hang is tested at --timeout 3).
+           {"uniform", "grid", "coplanar", "tiny"},
            {engine::Location::Walk},
            60.0,
            20.0},
