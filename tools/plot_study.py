@@ -170,17 +170,22 @@ def flips(rows, ax):
     fig = ax.figure
     ax.remove()
     left, right = fig.subplots(1, 2)
+    # One colour per input in both panels, one line style per flip kind: the default colour
+    # cycle would give each (input, kind) line its own colour and run out of colours.
+    palette = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
+    colour = {}
     for (inp, loc), g in grouped(rows, ["input", "location"]).items():
+        c = colour.setdefault(inp, palette[len(colour) % len(palette)])
         by_n = grouped(g, ["size_asked"])
         ns = sorted(int(n[0]) for n in by_n)
         for kind, style in (("S23", "-"), ("S32", "--"), ("S22", "-."), ("S44", ":")):
             ys = [mean(by_n[(str(n),)], "flips." + kind) / median(by_n[(str(n),)], "points")
                   for n in ns]
             if any(y > 0 for y in ys):
-                left.plot(ns, ys, marker="o", linestyle=style, label="%s %s" % (inp, kind))
+                left.plot(ns, ys, marker="o", linestyle=style, color=c, label="%s %s" % (inp, kind))
         nodes = [num(r, "dag_nodes") for r in g]
         seconds = [num(r, "seconds.total") for r in g]
-        right.plot(nodes, seconds, "o", label="%s (%s)" % (inp, loc))
+        right.plot(nodes, seconds, "o", color=c, label="%s (%s)" % (inp, loc))
     left.set_xscale("log")
     left.set_xlabel("points")
     left.set_ylabel("flips per point (mean)")
