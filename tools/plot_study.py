@@ -298,7 +298,9 @@ def main():
     rows = all_rows(csv_path) if name in ALL_ROWS else ok_rows(csv_path)
     if not rows:
         sys.exit("plot_study.py: %s has no finished run to plot" % csv_path)
-    height = 4.5 if name != "peers" else max(4.5, 1.2 + 0.28 * len(grouped(rows, ["input", "size_asked"])))
+    height = 4.5
+    if name == "peers":
+        height = max(4.5, 1.2 + 0.28 * len(grouped(rows, ["input", "size_asked"])))
     fig, ax = plt.subplots(figsize=(9 if name != "peers" else 10.5, height))
     PLOTS[name](rows, ax)
     for axis in fig.axes:
