@@ -50,6 +50,63 @@ TEST(InsertionOrder, HilbertKeysWalkTheGridThroughFaces) {
   }
 }
 
+// The curve on a coarser grid is the finer curve's prefix: the key of a cell's coarse cell (its
+// coordinates shifted right) is its key shifted right by three bits a level. The automaton's
+// derivation rests on it (hilbert_curve.hpp), and the partitioned method names most vertices'
+// parts from such a prefix.
+TEST(InsertionOrder, HilbertKeyOnFewerBitsIsThePrefixOfTheFinerKey) {
+  for (unsigned bits = 2; bits <= 10; ++bits) {
+    for (unsigned dropped = 1; dropped < bits; ++dropped) {
+      for (std::uint32_t i = 0; i < 4000; ++i) {
+        // Cells spread through the grid (a multiplicative hash of i per axis).
+        const std::uint32_t mask = (1u << bits) - 1;
+        const std::uint32_t x = (i * 2654435761u >> 7) & mask;
+        const std::uint32_t y = (i * 2246822519u >> 9) & mask;
+        const std::uint32_t z = (i * 3266489917u >> 11) & mask;
+        ASSERT_EQ(engine::hilbert_key_by_transforms(x, y, z, bits) >> (3 * dropped),
+                  engine::hilbert_key_by_transforms(x >> dropped, y >> dropped, z >> dropped,
+                                                    bits - dropped))
+            << x << " " << y << " " << z << ", bits " << bits << ", dropped " << dropped;
+      }
+    }
+  }
+}
+
+// The automaton derived from the definition gives the definition's keys: on every cell of the
+// grids up to 64^3, and on cells spread through the finer grids up to the walk mode's 2^21.
+TEST(InsertionOrder, HilbertAutomatonGivesTheDefinitionsKeys) {
+  EXPECT_GE(engine::kHilbertStates.states(), 2);
+  EXPECT_LE(engine::kHilbertStates.states(), engine::HilbertStates::kMaxStates);
+  for (unsigned bits = 1; bits <= 6; ++bits) {
+    const std::uint32_t side = 1u << bits;
+    for (std::uint32_t x = 0; x < side; ++x) {
+      for (std::uint32_t y = 0; y < side; ++y) {
+        for (std::uint32_t z = 0; z < side; ++z) {
+          ASSERT_EQ(engine::hilbert_key(x, y, z, bits),
+                    engine::hilbert_key_by_transforms(x, y, z, bits))
+              << x << " " << y << " " << z << ", bits " << bits;
+        }
+      }
+    }
+  }
+  for (unsigned bits = 7; bits <= engine::kHilbertBits; ++bits) {
+    const std::uint32_t mask = (1u << bits) - 1;
+    for (std::uint32_t i = 0; i < 20000; ++i) {
+      const std::uint32_t x = (i * 2654435761u >> 3) & mask;
+      const std::uint32_t y = (i * 2246822519u >> 5) & mask;
+      const std::uint32_t z = (i * 3266489917u >> 1) & mask;
+      ASSERT_EQ(engine::hilbert_key(x, y, z, bits),
+                engine::hilbert_key_by_transforms(x, y, z, bits))
+          << x << " " << y << " " << z << ", bits " << bits;
+    }
+    // The grid's corners and the cells beside its middle, where every level's bit changes.
+    for (const std::uint32_t c : {0u, mask, mask / 2, mask / 2 + 1}) {
+      ASSERT_EQ(engine::hilbert_key(c, mask - c, c, bits),
+                engine::hilbert_key_by_transforms(c, mask - c, c, bits));
+    }
+  }
+}
+
 // The sort along the curve is stable: equal points (equal keys) stay in the random order, so the
 // order depends on the seed and the points alone.
 TEST(InsertionOrder, EqualKeysKeepTheRandomOrder) {

@@ -53,6 +53,7 @@ void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
               {"postponed", p.postponed},
               {"stopped_walks", p.stopped_walks},
               {"seconds", p.seconds},
+              {"setup_seconds", p.setup_seconds},
               {"imbalance", p.imbalance}});
     list.push_back(one);
     postponed += p.postponed;

@@ -19,47 +19,6 @@ std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
   return order;
 }
 
-// Hilbert key by Skilling's method ("Programming the Hilbert curve", 2004): the curve is built
-// from the most significant bit down; at each level the sub-cube's frame is a reflection and an
-// axis exchange of the parent's, and applying those transformations to the lower bits of the
-// coordinates first (the loop over q), then Gray-decoding the bit columns, leaves the "transposed"
-// index, whose bits interleaved axis by axis are the distance along the curve.
-std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, unsigned bits) {
-  // Branch-free: each bit's test is a mask (0 or all ones), since the bits of random points are
-  // as unpredictable as a branch can get (the branches cost more than the rest of the order).
-  std::uint32_t axis[3] = {x, y, z};
-  for (unsigned level = bits - 1; level > 0; --level) {
-    const std::uint32_t lower = (1u << level) - 1;
-    for (std::uint32_t& a : axis) {
-      const std::uint32_t set = 0u - ((a >> level) & 1u);
-      // set: reflect the lower bits of the first axis; clear: exchange them with this axis
-      // (nothing when this axis is the first).
-      const std::uint32_t differ = (axis[0] ^ a) & lower & ~set;
-      axis[0] ^= (lower & set) | differ;
-      a ^= differ;
-    }
-  }
-  axis[1] ^= axis[0];
-  axis[2] ^= axis[1];
-  std::uint32_t flip = 0;
-  for (unsigned level = bits - 1; level > 0; --level) {
-    flip ^= ((1u << level) - 1) & (0u - ((axis[2] >> level) & 1u));
-  }
-  for (std::uint32_t& a : axis) a ^= flip;
-  // Interleave, most significant first, axis 0 before 1 before 2: bit b of axis k lands at
-  // 3 b + 2 - k. spread() moves bit b of a 21-bit value to 3 b by halving steps.
-  auto spread = [](std::uint32_t v) {
-    std::uint64_t s = v & 0x1FFFFFu;
-    s = (s | (s << 32)) & 0x001F00000000FFFFull;
-    s = (s | (s << 16)) & 0x001F0000FF0000FFull;
-    s = (s | (s << 8)) & 0x100F00F00F00F00Full;
-    s = (s | (s << 4)) & 0x10C30C30C30C30C3ull;
-    s = (s | (s << 2)) & 0x1249249249249249ull;
-    return s;
-  };
-  return (spread(axis[0]) << 2) | (spread(axis[1]) << 1) | spread(axis[2]);
-}
-
 namespace {
 
 // A coordinate's cell on the 2^bits grid over [lo, lo + extent].

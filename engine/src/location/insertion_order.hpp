@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dtlab/predicates/point.hpp"
+#include "location/hilbert_curve.hpp"
 
 namespace dtlab::engine {
 
@@ -15,8 +16,11 @@ namespace dtlab::engine {
 std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed);
 
 // The position of cell (x, y, z) of a 2^bits grid along the Hilbert curve that fills it
-// (bits <= 21, so the key fits 63 bits). Consecutive keys name face-adjacent cells.
-std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, unsigned bits);
+// (bits <= 21, so the key fits 63 bits). Consecutive keys name face-adjacent cells; the key on a
+// coarser grid is the finer key's prefix. By the automaton of hilbert_curve.hpp.
+inline std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t z, unsigned bits) {
+  return kHilbertStates.key(x, y, z, bits);
+}
 
 // Reorders `ids` (a random order) into BRIO rounds, each sorted along the Hilbert curve of the
 // points' bounding box: the last round is the second half of `ids`, the one before it the

@@ -31,9 +31,9 @@ namespace {
 // Passes after the last round that may still use several parts; then one part inserts the rest.
 constexpr int kFinalParallelPasses = 3;
 // The passes' curves: a grid of 2^10 cells a side over twice the input's cube (512 across the
-// input), at half the cost of the walk mode's 21 bits (keys are taken for every vertex in every
-// pass). Fine enough to cut and order points that spread through their box (512^3 cells, over a
-// hundred a point at 1M); points crowded into a few cells (a far outlier) share keys, so the cuts
+// input), at 0.7 times the cost of the walk mode's 21 bits (keys are taken for every vertex in
+// every pass). Fine enough to cut and order points that spread through their box (512^3 cells, over
+// a hundred a point at 1M); points crowded into a few cells (a far outlier) share keys, so the cuts
 // fall unevenly and the passes are unbalanced: slower, never wrong (a part is any set of points).
 constexpr unsigned kPassKeyBits = 10;
 // Keys sampled to place the cuts.
@@ -139,6 +139,7 @@ class PartitionedRun {
       syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
     }
     if (parts > 1) place_walk_starts(parts, pending);
+    const auto threads_start = std::chrono::steady_clock::now();
     run_.on_threads([&](int i) {
       if (i >= parts) return;
       const auto thread_start = std::chrono::steady_clock::now();
@@ -161,6 +162,7 @@ class PartitionedRun {
     record.postponed = postponed.size();
     record.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    record.setup_seconds = std::chrono::duration<double>(threads_start - start).count();
     double most = 0;
     double sum = 0;
     for (int i = 0; i < parts; ++i) {
@@ -220,7 +222,7 @@ class PartitionedRun {
                        });
     for (const std::uint32_t v : run_.input.first) part_of_[v] = name_part(v);
   }
-  // Before a pass of several parts, on this thread alone: the walk starts of every part at its
+  // Before a pass of several parts, each part on its own thread: the walk starts of the part at its
   // anchors, every kAnchorSpacing-th of its pending points (the first included), each a
   // tetrahedron with a vertex of the part (readable: no other thread writes it in the pass), the
   // nearest found to the anchor point. The walks to these points may go anywhere now, as nobody
@@ -236,23 +238,21 @@ class PartitionedRun {
       const std::uint8_t part = part_of_[pending[position]];
       if (counted[part]++ % kAnchorSpacing == 0) anchors_[part].push_back({position, kNoTet});
     }
-    for (int i = 0; i < parts; ++i) {
+    // Each part's walks on its own thread: they only read, and nobody writes until they end.
+    run_.on_threads([&](int i) {
       const auto index = static_cast<std::size_t>(i);
-      if (anchors_[index].empty()) continue;
+      if (i >= parts || anchors_[index].empty()) return;
       PartitionSync& sync = *syncs_[index];
       auto& dt = inserters_[index]->dt;
       sync.set_part(static_cast<std::uint8_t>(i), true);
-      std::vector<TetId> located;
-      for (const Anchor& a : anchors_[index]) {
-        located.push_back(dt.locate_only(pending[a.position]));  // walks on from the last one
+      for (Anchor& a : anchors_[index]) {
+        a.start = dt.locate_only(pending[a.position]);  // walks on from the last one
         dt.end_operation();
       }
       sync.set_part(static_cast<std::uint8_t>(i), false);
-      for (std::size_t k = 0; k < located.size(); ++k) {
-        anchors_[index][k].start = readable_near(located[k], sync);
-      }
+      for (Anchor& a : anchors_[index]) a.start = readable_near(a.start, sync);
       dt.set_walk_start(anchors_[index].front().start);
-    }
+    });
   }
   // A tetrahedron `sync` may read: t or the nearest in a breadth-first search over faces.
   TetId readable_near(TetId t, const PartitionSync& sync) const {

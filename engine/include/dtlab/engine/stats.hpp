@@ -67,6 +67,8 @@ struct PartitionPass {
   std::uint64_t stopped_walks = 0;  // of those, walks stopped at the part's border (or
                                     // with no readable start)
   double seconds = 0.0;             // the pass's wall time
+  double setup_seconds = 0.0;       // of which before its threads insert: the cut, the keys,
+                                    // the sort along the curve, the walk starts
   double imbalance = 1.0;           // the busiest part's time over the parts' mean (1: balanced)
 };
 
