@@ -13,6 +13,17 @@
 
 namespace dtlab::engine {
 
+// Bit b of v moved to bit 3 b (v < 2^21), by halving steps.
+constexpr std::uint64_t spread_bits(std::uint32_t v) {
+  std::uint64_t s = v & 0x1FFFFFu;
+  s = (s | (s << 32)) & 0x001F00000000FFFFull;
+  s = (s | (s << 16)) & 0x001F0000FF0000FFull;
+  s = (s | (s << 8)) & 0x100F00F00F00F00Full;
+  s = (s | (s << 4)) & 0x10C30C30C30C30C3ull;
+  s = (s | (s << 2)) & 0x1249249249249249ull;
+  return s;
+}
+
 // Skilling, "Programming the Hilbert curve" (2004), in our own terms: bits <= 21.
 constexpr std::uint64_t hilbert_key_by_transforms(std::uint32_t x, std::uint32_t y, std::uint32_t z,
                                                   unsigned bits) {
@@ -36,22 +47,9 @@ constexpr std::uint64_t hilbert_key_by_transforms(std::uint32_t x, std::uint32_t
     flip ^= ((1u << level) - 1) & (0u - ((axis[2] >> level) & 1u));
   }
   for (std::uint32_t& a : axis) a ^= flip;
-  std::uint64_t key = 0;
-  for (unsigned level = bits; level-- > 0;) {
-    for (const std::uint32_t a : axis) key = (key << 1) | ((a >> level) & 1u);
-  }
-  return key;
-}
-
-// Bit b of v moved to bit 3 b (v < 2^21), by halving steps.
-constexpr std::uint64_t spread_bits(std::uint32_t v) {
-  std::uint64_t s = v & 0x1FFFFFu;
-  s = (s | (s << 32)) & 0x001F00000000FFFFull;
-  s = (s | (s << 16)) & 0x001F0000FF0000FFull;
-  s = (s | (s << 8)) & 0x100F00F00F00F00Full;
-  s = (s | (s << 4)) & 0x10C30C30C30C30C3ull;
-  s = (s | (s << 2)) & 0x1249249249249249ull;
-  return s;
+  // Interleave, most significant first, axis 0 before 1 before 2: bit b of axis k lands at
+  // 3 b + 2 - k.
+  return (spread_bits(axis[0]) << 2) | (spread_bits(axis[1]) << 1) | spread_bits(axis[2]);
 }
 
 // The automaton. An octant is x y z's bits at one level, x's highest (0..7); a state's entry for

@@ -31,7 +31,7 @@ namespace {
 // Passes after the last round that may still use several parts; then one part inserts the rest.
 constexpr int kFinalParallelPasses = 3;
 // The passes' curves: a grid of 2^10 cells a side over twice the input's cube (512 across the
-// input), at 0.7 times the cost of the walk mode's 21 bits (keys are taken for every vertex in
+// input), at about half the cost of the walk mode's 21 bits (keys are taken for every vertex in
 // every pass). Fine enough to cut and order points that spread through their box (512^3 cells, over
 // a hundred a point at 1M); points crowded into a few cells (a far outlier) share keys, so the cuts
 // fall unevenly and the passes are unbalanced: slower, never wrong (a part is any set of points).
