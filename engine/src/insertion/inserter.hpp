@@ -206,8 +206,9 @@ class IncrementalDelaunay : public LawsonPass<K, Sync> {
     return duplicates_;
   }
 
-  // Lock-free DAG descent only (the batch method's locating threads, the pessimistic method's
-  // unsynchronized part): a node that contains p, a leaf when nobody changes the mesh meanwhile.
+  // Location only, no insertion (the batch method's locating threads, the pessimistic method's
+  // unsynchronized part, the partitioned method's anchors): a DAG node or, in walk mode, a
+  // tetrahedron that contains p, a leaf or live one when nobody changes the mesh meanwhile.
   // Counted like insert()'s own location: seconds.location, predicate calls, location steps.
   TetId locate_only(VertexId p) {
     const PhaseClock::Ticks t0 = PhaseClock::now();

@@ -9,6 +9,8 @@
 //   root down, and a key is one table look-up per two levels instead of the transforms of every
 //   level. hilbert_key (insertion_order.hpp) uses the automaton; the tests compare the two.
 #include <array>
+#include <cassert>
+#include <cstddef>
 #include <cstdint>
 
 namespace dtlab::engine {
@@ -27,6 +29,7 @@ constexpr std::uint64_t spread_bits(std::uint32_t v) {
 // Skilling, "Programming the Hilbert curve" (2004), in our own terms: bits <= 21.
 constexpr std::uint64_t hilbert_key_by_transforms(std::uint32_t x, std::uint32_t y, std::uint32_t z,
                                                   unsigned bits) {
+  assert(bits >= 1 && bits <= 21);
   // Branch-free: each bit's test is a mask (0 or all ones).
   std::array<std::uint32_t, 3> axis{x, y, z};
   for (unsigned level = bits - 1; level > 0; --level) {
@@ -122,6 +125,7 @@ class HilbertStates {
   // The key of cell (x, y, z) of the 2^bits grid (bits <= 21), as hilbert_key_by_transforms.
   [[nodiscard]] constexpr std::uint64_t key(std::uint32_t x, std::uint32_t y, std::uint32_t z,
                                             unsigned bits) const {
+    assert(bits >= 1 && bits <= 21);  // 3 bits a level in 63
     // The octants of every level side by side: x y z interleaved, the highest level first.
     const std::uint64_t octants = (spread_bits(x) << 2) | (spread_bits(y) << 1) | spread_bits(z);
     std::uint64_t key = 0;
