@@ -5,9 +5,11 @@
 // - HilbertStates: the same curve as a finite automaton, derived at compile time from the
 //   definition. A cell's sub-curve is its parent's under a symmetry of the cube, and the order in
 //   which a cell's curve visits its eight children names that symmetry (only the identity keeps
-//   all eight octants in place), so the automaton's states are the children's orders met from the
-//   root down, and a key is one table look-up per two levels instead of the transforms of every
-//   level. hilbert_key (insertion_order.hpp) uses the automaton; the tests compare the two.
+//   all eight octants in place; a sub-curve run backwards is the curve's image under the
+//   reflection that swaps its ends, so it is one of them), so the automaton's states are the
+//   children's orders met from the root down, and a key is one table look-up per two levels
+//   instead of the transforms of every level. hilbert_key (insertion_order.hpp) uses the
+//   automaton; the tests compare the two.
 #include <array>
 #include <cassert>
 #include <cstddef>
@@ -26,7 +28,12 @@ constexpr std::uint64_t spread_bits(std::uint32_t v) {
   return s;
 }
 
-// Skilling, "Programming the Hilbert curve" (2004), in our own terms: bits <= 21.
+// The definition, after Skilling ("Programming the Hilbert curve", 2004): the curve is built from
+// the most significant bit down; at each level the sub-cube's frame is a reflection and an axis
+// exchange of the parent's, and applying those transformations to the lower bits of the
+// coordinates first (the loop over the levels), then Gray-decoding the bit columns, leaves the
+// "transposed" index, whose bits interleaved axis by axis are the distance along the curve.
+// 1 <= bits <= 21.
 constexpr std::uint64_t hilbert_key_by_transforms(std::uint32_t x, std::uint32_t y, std::uint32_t z,
                                                   unsigned bits) {
   assert(bits >= 1 && bits <= 21);
