@@ -918,6 +918,9 @@ TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
             EXPECT_LE(pass.parts, static_cast<std::uint64_t>(threads)) << what;
             EXPECT_LE(pass.postponed, pass.points) << what;
             EXPECT_LE(pass.stopped_walks, pass.postponed) << what;
+            // The steps before the threads insert are part of the pass's time.
+            EXPECT_GE(pass.setup_seconds, 0.0) << what;
+            EXPECT_LE(pass.setup_seconds, pass.seconds) << what;
             if (pass.parts > 1) ++parallel_passes;
             if (pass.parts == 1) {
               EXPECT_EQ(pass.stopped_walks, 0u) << what;
