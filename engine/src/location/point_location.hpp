@@ -160,7 +160,8 @@ class PointLocator {
   // (The face just crossed needs no asking: the walk came through it from the other side.)
   // Out of line: inlined into locate(), the confined walk's orientation tests stayed calls
   // (callgrind, uniform:200000, partitioned at 2 threads: 711M instructions of location, 585M
-  // out of line; the sequential walk, already out of line, and the lock methods' unchanged).
+  // out of line; the sequential walk, already out of line, optimistic-detect's and lock-grid's
+  // within 0.8 % of their counts before).
   template <bool kConfined = false>
   [[gnu::noinline]] TetId walk(VertexId p, std::array<int, 4>& o, TetId t) {
     TetId previous = kNoTet;
