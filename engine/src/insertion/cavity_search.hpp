@@ -74,7 +74,8 @@ class CavitySearch {
             // atomically, which no other thread follows (the face has none of its vertices).
             *in_conflict = geometry_.in_conflict(mesh_.tets[n], p);
             if (*in_conflict) {
-              if (!sync_.acquire(n)) return Grown::GaveUp;
+              // n shares the face with s, which this thread holds: its apex decides.
+              if (!sync_.acquire_across(n, ref_face(out))) return Grown::GaveUp;
               enter(n);
             }
           } else {

@@ -3,14 +3,16 @@
 // anything another thread writes. A thread may change only the tetrahedra its part owns: those
 // whose finite vertices all lie in its part (part_of, fixed for the pass; the vertex at infinity
 // belongs to every part). acquire() is that test, asked for every tetrahedron an insertion changes
-// (inserter.hpp, topology_commit.hpp; a cavity's outside neighbours only get an atomic back
-// reference, unasked: insertion/cavity_search.hpp). A tetrahedron with a finite vertex of
+// (inserter.hpp, topology_commit.hpp; the cavity search's acquire_across() asks it of the one
+// vertex a step adds, and a cavity's outside neighbours only get an atomic back reference,
+// unasked: insertion/cavity_search.hpp). A tetrahedron with a finite vertex of
 // this thread's part is owned by no other part, so no other thread writes it during the pass: the
 // thread reads only such tetrahedra (readable), and its walk crosses only faces with a vertex of
 // its part (may_cross), into such a tetrahedron. The parts are disjoint, so no tetrahedron is
 // written by two threads nor read while another writes it: docs/design.md, "The partitioned
 // method", has the argument. A refusal gives the insertion up: a cavity has written nothing yet;
 // the flips are undone from this thread's log, and the point waits for a pass with other cuts.
+#include <cassert>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +41,17 @@ class PartitionSync : public LocalUndoLog {
       if (v != kInfiniteVertex && !mine(v)) return false;
     }
     return true;
+  }
+
+  // acquire(t) for a tetrahedron entered across its face `face` from one this thread holds (the
+  // cavity search's step): the face's three vertices are that one's, this part's or the vertex at
+  // infinity, so only t's vertex opposite the face can be another part's. One look-up, not four.
+  bool acquire_across(TetId t, int face) const {
+    if (whole_) return true;
+    const VertexId apex = mesh_.tets[t].vertex[static_cast<std::size_t>(face)];
+    const bool owned = apex == kInfiniteVertex || mine(apex);
+    assert(owned == acquire(t));
+    return owned;
   }
 
   // Whether other threads write the mesh during this pass (a pass of several parts).
