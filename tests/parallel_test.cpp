@@ -46,6 +46,7 @@ using engine::Method;
 using engine::PreventSync;
 using engine::TetId;
 using engine::ThreadStats;
+using engine::VertexId;
 using predicates::Point3;
 
 const Method kParallel[] = {Method::Pessimistic, Method::OptimisticDetect,
@@ -188,12 +189,50 @@ TEST(ParallelMethods, ConcurrentThreadsMapEachStoreBlockOnce) {
   EXPECT_EQ(small.blocks_mapped(), 1u);
 }
 
+// The output's packing, block by block (TetStore::pack_quads): the kept slots' vertices, renamed,
+// at the block's front in slot order, for each slot layout (32 bytes; 36 with lock words; 52 with
+// DAG children too), every slot kept or every other one; the block's other memory is not read
+// after a quad lands on it.
+TEST(TetStore, PackQuadsKeepsTheKeptSlotsInOrderAtTheBlocksFront) {
+  constexpr std::size_t kBlock = engine::TetStore::kBlockSize;
+  for (const bool lock_words : {false, true}) {
+    for (const bool children : {false, true}) {
+      for (const std::size_t every : {1u, 2u}) {
+        engine::TetStore store;
+        store.keep_children(children);
+        store.keep_lock_words(lock_words);
+        const std::size_t slots = kBlock + 1000;  // a full block, then part of a second
+        for (std::size_t i = 0; i < slots; ++i) {
+          const TetId t = store.allocate();
+          store[t].vertex = {static_cast<VertexId>(4 * t), static_cast<VertexId>(4 * t + 1),
+                             static_cast<VertexId>(4 * t + 2), static_cast<VertexId>(4 * t + 3)};
+          store.set_alive(t, t % every == 0);
+        }
+        for (std::size_t b = 0; b < 2; ++b) {
+          const std::size_t in_block = b == 0 ? kBlock : slots - kBlock;
+          const auto quads = store.pack_quads(
+              b, in_block, [&](TetId t) { return store.is_alive(t); },
+              [](VertexId v) { return v + 7; });
+          const std::string what = std::to_string(lock_words) + std::to_string(children) +
+                                   std::to_string(every) + " block " + std::to_string(b);
+          ASSERT_EQ(quads.size(), (in_block + every - 1) / every) << what;
+          for (std::size_t k = 0; k < quads.size(); ++k) {
+            const auto t = static_cast<VertexId>(b * kBlock + k * every);
+            const engine::Quad expected{4 * t + 7, 4 * t + 8, 4 * t + 9, 4 * t + 10};
+            ASSERT_EQ(quads[k], expected) << what << " quad " << k;
+          }
+        }
+      }
+    }
+  }
+}
+
 // The steps over whole arrays before the first insertion and after the last (the BRIO order, the
-// points' renumbering and scaling, collecting the tetrahedra a few store blocks at a time, naming
-// them in input order) run on the method's threads: with several store blocks (65,536 slots
-// each) copied in groups of 2, 3, 4 and 5 blocks, one of which ends with a short group (one of
-// the four runs has a block count that its thread count does not divide), duplicates to rename
-// and the auxiliary
+// points' renumbering and scaling, packing the tetrahedra in the store's blocks and appending
+// them a block at a time, naming them in input order) run on the method's threads: with several
+// store blocks (65,536 slots each) shared among 2, 3, 4 and 5 threads, one of which gets a
+// shorter share (one of the four runs has a block count that its thread count does not divide),
+// duplicates to rename and the auxiliary
 // tetrahedron's vertices to leave out, the mesh is the sequential run's. (The mesh is unique, so
 // this does not see the order; InsertionOrder.TheOrderDoesNotDependOnTheThreadCount does.) The
 // two wall-clock parts are measured and are part of the total.

@@ -1,15 +1,17 @@
 #include "mesh/shared_mesh.hpp"
 
 #include <algorithm>
+#include <span>
 
 #include "support/parallel_ranges.hpp"
 
 namespace dtlab::engine {
 
 // Each thread takes a contiguous share of the store's blocks; a block's tetrahedra go after those
-// of every lower block (per-block counts first). The copy goes a group of `threads` blocks at a
-// time: the output grows (and is paged in, by the calling thread: resize zeroes it) by one group
-// while the group's blocks are let go, so the two never coexist whole.
+// of every lower block. Releasing, the blocks are packed in place, then appended and let go one at
+// a time. Not releasing (the store is read again), per-block counts come first, and the copy goes
+// a group of `threads` blocks at a time into the output, grown (and zeroed, by the calling
+// thread) a group at a time. Either way the output and the whole store never coexist.
 std::vector<Tetrahedron> SharedMesh::collect(
     VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates,
     bool release, int threads) const {
@@ -63,6 +65,29 @@ std::vector<Tetrahedron> SharedMesh::collect(
         if (kept(static_cast<TetId>(i))) copy_kept(i, out.emplace_back());
       }
       if (release && begin < end) tets.release_block_of(static_cast<TetId>(begin));
+    }
+    return out;
+  }
+  if (release) {
+    // Each thread packs its share of the blocks in place (TetStore::pack_quads); then one thread
+    // appends them block by block, each let go once appended. An append constructs the copies
+    // from the packed ones: a resize would first zero the output on this thread alone (that and
+    // the blocks' copy groups made the step slower on two threads than on one).
+    std::vector<std::span<const Quad>> packed(blocks);
+    over_blocks(0, blocks, [&](std::size_t block) {
+      const auto [begin, end] = slots_of(block);
+      packed[block] = tets.pack_quads(block, end - begin, kept, [&](VertexId v) {
+        return representative.empty() ? v : representative[v];
+      });
+    });
+    std::size_t total = 0;
+    for (const auto& quads : packed) total += quads.size();
+    std::vector<Tetrahedron> out;
+    out.reserve(total);
+    for (std::size_t block = 0; block < blocks; ++block) {
+      out.insert(out.end(), packed[block].begin(), packed[block].end());
+      const auto [begin, end] = slots_of(block);
+      if (begin < end) tets.release_block_of(static_cast<TetId>(begin));
     }
     return out;
   }

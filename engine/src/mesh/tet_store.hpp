@@ -19,8 +19,10 @@
 #include <atomic>
 #include <cassert>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <new>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -238,6 +240,26 @@ class TetStore {
       }
     }
     return static_cast<TetId>(first);
+  }
+  // The output step's copy without a second buffer: the vertices of block b's first `slots`
+  // slots that keep(t) holds, passed through rename (VertexId -> VertexId), packed to the front
+  // of the block's own memory in slot order (16 bytes each where a slot takes 32 or more, so a
+  // quad never lands on a slot not read yet). The block holds no records afterwards: only
+  // release_block_of may follow. Blocks are disjoint, so threads pack different ones at once.
+  template <class Keep, class Rename>
+  std::span<const Quad> pack_quads(std::size_t b, std::size_t slots, Keep keep, Rename rename) {
+    static_assert(sizeof(Quad) <= sizeof(Tet));
+    char* const block = blocks_[b].load(std::memory_order_acquire);
+    std::size_t packed = 0;
+    for (std::size_t i = 0; i < slots; ++i) {
+      const auto t = static_cast<TetId>((b << kBlockBits) + i);
+      if (!keep(t)) continue;
+      Quad q = (*this)[t].vertex;  // read whole before the write, which may overlap slot 0
+      for (VertexId& v : q) v = rename(v);
+      std::memcpy(block + packed * sizeof(Quad), &q, sizeof(Quad));
+      ++packed;
+    }
+    return {std::launder(reinterpret_cast<const Quad*>(block)), packed};
   }
   // Frees the block that holds slot t (the output step's last use of the store).
   void release_block_of(TetId t) {
