@@ -37,15 +37,19 @@ void write_points(const std::string& path, const std::vector<predicates::Point3>
 }
 
 // The mesh and the files beside it, as `output` asks. The .vtu gets `cells` as cell arrays.
+// `mesh` is read in place; only --canonical makes a (sorted) copy.
 void write_mesh(const MeshOutput& output, const std::vector<predicates::Point3>& points,
-                std::vector<engine::Tetrahedron> tets, const std::vector<io::CellArray>& cells) {
+                const std::vector<engine::Tetrahedron>& mesh,
+                const std::vector<io::CellArray>& cells) {
   if (output.path.empty()) return;
+  std::vector<engine::Tetrahedron> canonical;
   if (output.canonical) {
     if (!cells.empty()) {
       throw std::invalid_argument("--canonical reorders the tetrahedra: not with cell arrays");
     }
-    tets = engine::canonical_tetrahedra(std::move(tets));
+    canonical = engine::canonical_tetrahedra(mesh);
   }
+  const std::vector<engine::Tetrahedron>& tets = output.canonical ? canonical : mesh;
   const std::string stem = output.path.substr(0, output.path.size() - 4);
   if (ends_with(output.path, ".ele")) {
     io::write_node(stem + ".node", points);
