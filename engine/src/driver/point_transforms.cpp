@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "support/parallel_ranges.hpp"
+#include "support/populate_pages.hpp"
 
 namespace dtlab::engine {
 
@@ -55,7 +56,7 @@ void scale_points(std::vector<Point3>& points, int exponent, int threads) {
 // before the store grows or after it is released, below the run's peak either way, and a gather
 // is faster than following the permutation's cycles in place (and splits over threads).
 void permute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from, int threads) {
-  std::vector<Point3> gathered(points.size());
+  std::vector<Point3> gathered = populated_vector<Point3>(points.size(), threads);
   in_parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) gathered[i] = points[from[i]];
   });
@@ -64,7 +65,7 @@ void permute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from
 
 // The inverse: points[from[i]] = old points[i] (each thread writes distinct entries).
 void unpermute(std::vector<Point3>& points, const std::vector<std::uint32_t>& from, int threads) {
-  std::vector<Point3> scattered(points.size());
+  std::vector<Point3> scattered = populated_vector<Point3>(points.size(), threads);
   in_parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) scattered[from[i]] = points[i];
   });

@@ -7,6 +7,7 @@
 
 #include "dtlab/common/random.hpp"
 #include "support/parallel_ranges.hpp"
+#include "support/populate_pages.hpp"
 #include "support/radix_sort.hpp"
 
 namespace dtlab::engine {
@@ -83,7 +84,7 @@ void brio_hilbert_order(const std::vector<predicates::Point3>& points,
                         std::vector<std::uint32_t>& ids, int threads) {
   if (ids.empty()) return;
   const HilbertFrame frame = curve_frame(points, &ids, 0, threads);
-  std::vector<KeyedId> keyed(ids.size());
+  std::vector<KeyedId> keyed = populated_vector<KeyedId>(ids.size(), threads);
   in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       if (i + kAhead < ids.size()) __builtin_prefetch(&points[ids[i + kAhead]]);
@@ -93,7 +94,7 @@ void brio_hilbert_order(const std::vector<predicates::Point3>& points,
   // Rounds from the end: [n/2, n), [n/4, n/2), ... and a first round [0, end) of at most
   // kFirstRound points. Equal keys keep the random order (ties are broken by position: the sort
   // is stable, on any number of threads).
-  std::vector<KeyedId> scratch(keyed.size());
+  std::vector<KeyedId> scratch = populated_vector<KeyedId>(keyed.size(), threads);
   std::size_t end = keyed.size();
   while (end > 0) {
     const std::size_t begin = end <= kFirstRound ? 0 : end / 2;

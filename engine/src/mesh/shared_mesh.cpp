@@ -4,6 +4,7 @@
 #include <span>
 
 #include "support/parallel_ranges.hpp"
+#include "support/populate_pages.hpp"
 
 namespace dtlab::engine {
 
@@ -84,6 +85,7 @@ std::vector<Tetrahedron> SharedMesh::collect(
     for (const auto& quads : packed) total += quads.size();
     std::vector<Tetrahedron> out;
     out.reserve(total);
+    populate_pages(out.data(), total * sizeof(Tetrahedron), parts);  // the faults in parallel
     for (std::size_t block = 0; block < blocks; ++block) {
       out.insert(out.end(), packed[block].begin(), packed[block].end());
       const auto [begin, end] = slots_of(block);

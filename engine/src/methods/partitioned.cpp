@@ -23,6 +23,7 @@
 #include "methods/parallel_run.hpp"
 #include "methods/partition_sync.hpp"
 #include "support/parallel_ranges.hpp"
+#include "support/populate_pages.hpp"
 #include "support/radix_sort.hpp"
 
 namespace dtlab::engine {
@@ -178,8 +179,8 @@ class PartitionedRun {
   // so that a thread walks from each point to the next, not across the other parts between its
   // runs of the walk mode's order. The keys also name the pending points' parts.
   void sort_along_pass_curve(std::vector<std::uint32_t>& pending) {
-    std::vector<KeyedId> keyed(pending.size());
-    std::vector<KeyedId> scratch(pending.size());
+    std::vector<KeyedId> keyed = populated_vector<KeyedId>(pending.size(), run_.threads);
+    std::vector<KeyedId> scratch = populated_vector<KeyedId>(pending.size(), run_.threads);
     in_parallel_ranges(
         pending.size(), run_.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
           for (std::size_t i = begin; i < end; ++i) {
