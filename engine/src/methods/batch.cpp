@@ -217,7 +217,7 @@ std::vector<Tetrahedron> run_with(const MethodInput& input, TriangulationStats& 
         break;
       }
       if (walk) starts.inserted(item, dt.walk_start());
-      run.progressed();
+      run.progressed(0);
     }
     queue.close();
     for (auto& t : pool) t.join();

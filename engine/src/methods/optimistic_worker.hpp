@@ -43,7 +43,7 @@ void insert_with_policies(ParallelRun<K>& run, MakeSync&& make_sync, Done&& done
         // has at most kMaxLocationAttempts of them (bounded work: the last rounds over an inexact
         // kernel's hopeless points, slow under a sanitizer, are no stall). Not a lock conflict:
         // threads can give up against each other forever.
-        if (abandoned || outcome == Outcome::Unlocated) run.progressed();
+        if (abandoned || outcome == Outcome::Unlocated) run.progressed(i);
         // Back off before the next attempt: the thread that waited for our locks must get them
         // before we take them again, or the two can give up against each other forever; and a
         // rollback that raced our descent must finish before we descend again.
@@ -51,7 +51,7 @@ void insert_with_policies(ParallelRun<K>& run, MakeSync&& make_sync, Done&& done
         std::this_thread::sleep_for(std::chrono::microseconds(1 << shift));
       } else {
         consecutive_give_ups = 0;
-        run.progressed();
+        run.progressed(i);
       }
     }
     run.finish_thread(i, dt);

@@ -23,6 +23,7 @@
 #include "methods/distribution.hpp"
 #include "methods/lock_table.hpp"
 #include "methods/method_input.hpp"
+#include "methods/progress_counters.hpp"
 #include "methods/watchdog.hpp"
 #include "methods/work_source.hpp"
 #include "repair/splay_repair.hpp"
@@ -128,7 +129,7 @@ class ParallelRun {
     body();
     // A body shorter than the watchdog's period (a partitioned pass) is looked at here.
     if (options.monitor != nullptr) {
-      options.monitor->done.store(progress.load(), std::memory_order_relaxed);
+      options.monitor->done.store(progress.total(), std::memory_order_relaxed);
       if (options.monitor->cancel.load(std::memory_order_relaxed)) throw RunCancelled();
     }
     if (watchdog.cancelled()) throw RunCancelled();
@@ -169,7 +170,8 @@ class ParallelRun {
   }
   [[nodiscard]] bool stopping() const { return table.stop.load(std::memory_order_relaxed); }
   // An insertion finished (or a point was abandoned): the watchdog's sign of life.
-  void progressed() { progress.fetch_add(1, std::memory_order_relaxed); }
+  // An insertion finished (or was abandoned) on thread i, for the watchdog.
+  void progressed(int i) { progress.add(i); }
 
   // What thread i's inserter found and counted, for finish().
   template <class Inserter>
@@ -244,7 +246,7 @@ class ParallelRun {
   std::vector<std::uint32_t> order;  // the points to insert, in order (the first four left out)
   LockTable table;
   EpochDomain epochs;  // slot reuse: dead slots reused after the epochs say nobody reads them
-  std::atomic<std::uint64_t> progress{0};
+  ProgressCounters progress{threads};  // the batch method counts on its inserter, thread 0
 
  private:
   std::vector<TriangulationStats> thread_stats_;

@@ -311,7 +311,7 @@ class PartitionedRun {
         // which repeats; a point is given a bounded number of tries (as in the lock methods).
         if (++unlocated_[index][v] > WorkSource::kMaxLocationAttempts) {
           ++counters.abandoned;
-          run_.progressed();
+          run_.progressed(i);
           continue;
         }
       }
@@ -319,7 +319,7 @@ class PartitionedRun {
         failed.push_back(v);
         if (outcome == Outcome::GaveUp && dt.walk_stopped()) ++stopped_walks_[index];
       } else {
-        run_.progressed();
+        run_.progressed(i);
       }
     }
     // The counters this method's insertions touch (count_outcome's and the abandonments).

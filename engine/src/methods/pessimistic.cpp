@@ -28,7 +28,7 @@ std::vector<Tetrahedron> run_with(const MethodInput& input, TriangulationStats& 
       dt.set_location_hint(dt.locate_only(*v));
       std::lock_guard<std::mutex> guard(global);
       count_outcome(dt.insert(*v), counters);
-      run.progressed();
+      run.progressed(i);
     }
     run.finish_thread(i, dt);
     run.stats.threads[static_cast<std::size_t>(i)] = counters;

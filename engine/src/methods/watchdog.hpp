@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "dtlab/engine/run_monitor.hpp"
+#include "methods/progress_counters.hpp"
 
 namespace dtlab::engine {
 
@@ -17,7 +18,7 @@ namespace dtlab::engine {
 // then see only `stop`, which they already poll.
 class Watchdog {
  public:
-  Watchdog(double seconds, std::atomic<std::uint64_t>& progress, std::atomic<bool>& stop,
+  Watchdog(double seconds, const ProgressCounters& progress, std::atomic<bool>& stop,
            RunMonitor* monitor = nullptr)
       : seconds_(seconds), progress_(progress), stop_(stop), monitor_(monitor), thread_([this] {
           watch();
@@ -37,12 +38,12 @@ class Watchdog {
 
  private:
   void watch() {
-    std::uint64_t last = progress_.load();
+    std::uint64_t last = progress_.total();
     auto last_change = std::chrono::steady_clock::now();
     std::unique_lock<std::mutex> lock(mutex_);
     while (!done_) {
       wake_.wait_for(lock, std::chrono::milliseconds(100));
-      const std::uint64_t now = progress_.load();
+      const std::uint64_t now = progress_.total();
       if (monitor_ != nullptr) {
         monitor_->done.store(now, std::memory_order_relaxed);
         if (monitor_->cancel.load(std::memory_order_relaxed)) {
@@ -63,7 +64,7 @@ class Watchdog {
     }
   }
   double seconds_;
-  std::atomic<std::uint64_t>& progress_;
+  const ProgressCounters& progress_;
   std::atomic<bool>& stop_;
   RunMonitor* monitor_;
   std::atomic<bool> fired_{false};
