@@ -4,8 +4,12 @@ runs `--rounds` times per binary (the order of the two flips every round), and t
 the median of the engine's own time (`seconds.total` of --stats) and of the peak memory per
 point, and the ratio new / old. Nothing else should run meanwhile.
 
-Usage: tools/compare_speed.py OLD-DTLAB NEW-DTLAB [--rounds 5] [--out table.md]
+Usage: tools/compare_speed.py OLD-DTLAB NEW-DTLAB [--rounds 5] [--out table.md] [--steps]
          [--config "uniform:1000000 --location walk" ...]
+
+--steps adds a second table: the medians of the steps before the first insertion and after the
+last (`seconds.ordering`, `seconds.output`) and of the inserting threads' own time summed
+(`seconds.location + subdivision + legalization`), old and new, for changes to those steps.
 """
 import argparse
 import json
@@ -25,11 +29,17 @@ DEFAULT_CONFIGS = [
 ]
 
 
+STEPS = ("ordering", "output", "threads")
+
+
 def run(binary, config, seed):
     cmd = [binary, "triangulate"] + config.split() + ["--seed", str(seed), "--stats", "-"]
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     stats = json.loads(out)
-    return stats["seconds"]["total"], stats["bytes_per_point"], stats["tetrahedra"]
+    s = stats["seconds"]
+    steps = {"ordering": s["ordering"], "output": s["output"],
+             "threads": s["location"] + s["subdivision"] + s["legalization"]}
+    return s["total"], stats["bytes_per_point"], stats["tetrahedra"], steps
 
 
 def main():
@@ -40,17 +50,20 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out")
     parser.add_argument("--config", action="append")
+    parser.add_argument("--steps", action="store_true")
     args = parser.parse_args()
     configs = args.config or DEFAULT_CONFIGS
     times = {c: {"old": [], "new": []} for c in configs}
     memory = {c: {"old": [], "new": []} for c in configs}
+    steps = {c: {"old": [], "new": []} for c in configs}
     for r in range(args.rounds):
         for c in configs:
             order = ["old", "new"] if r % 2 == 0 else ["new", "old"]
             counts = set()
             for which in order:
-                seconds, bpp, tets = run(getattr(args, which), c, args.seed)
+                seconds, bpp, tets, step_seconds = run(getattr(args, which), c, args.seed)
                 times[c][which].append(seconds)
+                steps[c][which].append(step_seconds)
                 memory[c][which].append(bpp)
                 counts.add(tets)
             if len(counts) != 1:
@@ -72,6 +85,18 @@ def main():
             + ", ".join(f"{t:.2f}" for t in times[c]["new"]) + " |")
     lines.append("")
     lines.append(f"Largest new / old: {worst:.3f}")
+    if args.steps:
+        lines += ["", "Medians of the steps (s): ordering and output (before the first insertion, "
+                  "after the last), and the inserting threads' location + subdivision + "
+                  "legalization summed.", "",
+                  "| configuration | " + " | ".join(f"old {k} | new {k}" for k in STEPS) + " |",
+                  "|---|" + "---:|" * (2 * len(STEPS))]
+        for c in configs:
+            cells = []
+            for k in STEPS:
+                for which in ("old", "new"):
+                    cells.append(f"{statistics.median(x[k] for x in steps[c][which]):.3f}")
+            lines.append(f"| `{c}` | " + " | ".join(cells) + " |")
     text = "\n".join(lines) + "\n"
     print(text)
     if args.out:
