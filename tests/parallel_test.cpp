@@ -32,8 +32,6 @@
 #include "methods/optimistic_detect.hpp"
 #include "methods/optimistic_prevent.hpp"
 #include "methods/partition_sync.hpp"
-#include "methods/progress_counters.hpp"
-#include "methods/watchdog.hpp"
 #include "validator_recount.hpp"
 
 namespace dtlab::test {
@@ -575,55 +573,6 @@ TEST(ParallelMethods, FastKernelFinishesOnAnInexactGrid) {
     engine::TriangulationStats stats;
     ASSERT_NO_THROW(stats = engine::triangulate(points, options).stats) << engine::to_string(m);
     EXPECT_GT(stats.tetrahedra, 0u) << engine::to_string(m);
-  }
-}
-
-// The insertions counted on every thread (each on its own counter) add up, whichever thread
-// counted them, while the threads count at once.
-TEST(ProgressCounters, TotalIsTheSumOfEveryThreadsCount) {
-  engine::ProgressCounters progress(4);
-  EXPECT_EQ(progress.total(), 0u);
-  std::vector<std::thread> threads;
-  std::atomic<std::uint64_t> seen{0};
-  for (int t = 0; t < 4; ++t) {
-    threads.emplace_back([&progress, &seen, t] {
-      for (int k = 0; k < 10000 * (t + 1); ++k) {
-        progress.add(t);
-        if (k % 1000 == 0) seen.store(progress.total());  // a reader meanwhile
-      }
-    });
-  }
-  for (std::thread& t : threads) t.join();
-  EXPECT_EQ(progress.total(), 10000u * (1 + 2 + 3 + 4));
-  EXPECT_LE(seen.load(), progress.total());
-}
-
-// The watchdog stops a run whose count stands still for its limit (and says so), and leaves
-// alone one whose count keeps growing.
-TEST(ProgressCounters, WatchdogFiresOnlyWhenNoThreadCounts) {
-  {
-    engine::ProgressCounters progress(2);
-    std::atomic<bool> stop{false};
-    engine::Watchdog watchdog(0.2, progress, stop);
-    const auto start = std::chrono::steady_clock::now();
-    while (!stop.load() && std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    EXPECT_TRUE(stop.load());
-    EXPECT_TRUE(watchdog.fired());
-  }
-  {
-    engine::ProgressCounters progress(2);
-    std::atomic<bool> stop{false};
-    // Three times the limit, counting every 10 ms: a watchdog blind to the count would fire.
-    engine::Watchdog watchdog(0.5, progress, stop);
-    const auto start = std::chrono::steady_clock::now();
-    while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1500)) {
-      progress.add(1);
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    EXPECT_FALSE(stop.load());
-    EXPECT_FALSE(watchdog.fired());
   }
 }
 

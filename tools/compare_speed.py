@@ -29,7 +29,7 @@ DEFAULT_CONFIGS = [
 ]
 
 
-STEPS = ("ordering", "output", "threads")
+STEPS = ("ordering", "output", "thread_seconds")
 
 
 def run(binary, config, seed):
@@ -37,8 +37,9 @@ def run(binary, config, seed):
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     stats = json.loads(out)
     s = stats["seconds"]
-    steps = {"ordering": s["ordering"], "output": s["output"],
-             "threads": s["location"] + s["subdivision"] + s["legalization"]}
+    # Binaries older than the steps' stats have none: their cells say so.
+    steps = {"ordering": s.get("ordering"), "output": s.get("output"),
+             "thread_seconds": s["location"] + s["subdivision"] + s["legalization"]}
     return s["total"], stats["bytes_per_point"], stats["tetrahedra"], steps
 
 
@@ -95,7 +96,8 @@ def main():
             cells = []
             for k in STEPS:
                 for which in ("old", "new"):
-                    cells.append(f"{statistics.median(x[k] for x in steps[c][which]):.3f}")
+                    values = [x[k] for x in steps[c][which] if x[k] is not None]
+                    cells.append(f"{statistics.median(values):.3f}" if values else "n/a")
             lines.append(f"| `{c}` | " + " | ".join(cells) + " |")
     text = "\n".join(lines) + "\n"
     print(text)

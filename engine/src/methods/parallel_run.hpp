@@ -169,8 +169,7 @@ class ParallelRun {
     table.stop.store(true);
   }
   [[nodiscard]] bool stopping() const { return table.stop.load(std::memory_order_relaxed); }
-  // An insertion finished (or a point was abandoned): the watchdog's sign of life.
-  // An insertion finished (or was abandoned) on thread i, for the watchdog.
+  // An insertion finished (or a point was abandoned) on thread i: the watchdog's sign of life.
   void progressed(int i) { progress.add(i); }
 
   // What thread i's inserter found and counted, for finish().

@@ -4,6 +4,7 @@
 // relaxed), summed by the reader. One shared counter, added to at every insertion, sent its cache
 // line from core to core at every insertion of every thread.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
