@@ -1,7 +1,8 @@
 // A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // The engine's stable radix sort of (key, id) pairs: the order of std::stable_sort by key, on one
-// thread and on several, with keys that share digits (skipped passes), many equal keys (stability)
-// and sizes around the split's minimum.
+// thread and on several, with keys that share digits (skipped passes), many equal keys (stability),
+// sizes around the split's minimum, and both ways of sorting a large array (split by the top
+// digit, or every digit over the whole array when the split would crowd into one part).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,11 +54,36 @@ TEST(StableSortByKey, FullWidthRandomKeysOnSeveralThreads) {
     items[i] = {random(), static_cast<std::uint32_t>(i)};
   }
   const std::vector<KeyedId> expected = sorted_by_std(items);
-  for (const int threads : {2, 5}) {
+  for (const int threads : {1, 2, 5}) {
     std::vector<KeyedId> sorted = items;
     std::vector<KeyedId> scratch(items.size());
     engine::stable_sort_by_key(sorted.data(), scratch.data(), sorted.size(), threads);
     EXPECT_EQ(sorted, expected) << threads;
+  }
+}
+
+// Keys crowded into one part of the split by the top digit (a far outlier's key alone above
+// them): the sort takes its other path, every digit over the whole array, on every thread count;
+// and keys that split evenly but vary in the low bytes only within each part.
+TEST(StableSortByKey, CrowdedAndLayeredKeysGiveStdStableSortsOrder) {
+  std::mt19937_64 random(11);
+  std::vector<KeyedId> crowded(50000);
+  for (std::size_t i = 0; i < crowded.size(); ++i) {
+    crowded[i] = {random() % 1000 + (i % 9 == 0 ? 0 : 5000), static_cast<std::uint32_t>(i)};
+  }
+  crowded[123].first = std::uint64_t{1} << 62;
+  std::vector<KeyedId> layered(70000);
+  for (std::size_t i = 0; i < layered.size(); ++i) {
+    layered[i] = {((random() % 4) << 40) | (random() % 50), static_cast<std::uint32_t>(i)};
+  }
+  for (const auto* items : {&crowded, &layered}) {
+    const std::vector<KeyedId> expected = sorted_by_std(*items);
+    for (const int threads : {1, 2, 3, 8}) {
+      std::vector<KeyedId> sorted = *items;
+      std::vector<KeyedId> scratch(items->size());
+      engine::stable_sort_by_key(sorted.data(), scratch.data(), sorted.size(), threads);
+      EXPECT_EQ(sorted, expected) << items->size() << " " << threads;
+    }
   }
 }
 

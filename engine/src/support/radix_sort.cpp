@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <barrier>
 #include <thread>
 #include <vector>
@@ -13,20 +14,28 @@ namespace dtlab::engine {
 namespace {
 
 constexpr int kDigits = 8;
+// A range of at most this many items is sorted by its lower digits least significant first: its
+// items and their scratch (128 KiB) stay in the core's L2 cache across the passes. A larger range
+// is first split by its most significant varying digit, so that every later pass works on such
+// a small range: a least-significant-first pass over the whole array scatters to 256 places in
+// tens of megabytes, eight times for a Hilbert key.
+constexpr std::size_t kInCache = 4096;
 
 std::size_t digit_of(const KeyedId& item, int d) {
   return static_cast<std::size_t>((item.first >> (8 * d)) & 0xFF);
 }
 
-void sort_on_one_thread(KeyedId* items, KeyedId* scratch, std::size_t n) {
-  std::vector<std::array<std::size_t, 256>> count(kDigits);
-  for (auto& c : count) c.fill(0);
+// Sorts a[0, n) by digits [0, top) of the keys, stably, least significant first, passing between
+// a and b (one counting pass serves every digit; a digit the same in all n keys is skipped).
+// Returns a or b, whichever holds the result.
+KeyedId* sort_low_digits(KeyedId* a, KeyedId* b, std::size_t n, int top) {
+  std::array<std::array<std::size_t, 256>, kDigits> count{};
   for (std::size_t i = 0; i < n; ++i) {
-    for (int d = 0; d < kDigits; ++d) ++count[static_cast<std::size_t>(d)][digit_of(items[i], d)];
+    for (int d = 0; d < top; ++d) ++count[static_cast<std::size_t>(d)][digit_of(a[i], d)];
   }
-  auto* from = items;
-  auto* to = scratch;
-  for (int d = 0; d < kDigits; ++d) {
+  KeyedId* from = a;
+  KeyedId* to = b;
+  for (int d = 0; d < top; ++d) {
     auto& c = count[static_cast<std::size_t>(d)];
     if (std::any_of(c.begin(), c.end(), [n](std::size_t k) { return k == n; })) continue;
     std::size_t sum = 0;
@@ -38,7 +47,40 @@ void sort_on_one_thread(KeyedId* items, KeyedId* scratch, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) to[c[digit_of(from[i], d)]++] = from[i];
     std::swap(from, to);
   }
-  if (from != items) std::copy(from, from + n, items);
+  return from;
+}
+
+// Sorts items[0, n) by digits [0, top) of the keys, stably, into items (scratch: n more). Small:
+// least significant digit first. Large: split by digit top - 1 (a counting pass into scratch,
+// stable), then each part sorted by the digits below it, in place there, and copied back while it
+// is still in the cache.
+void sort_by_digits_below(KeyedId* items, KeyedId* scratch, std::size_t n, int top) {
+  if (n <= kInCache || top <= 1) {
+    const KeyedId* sorted = sort_low_digits(items, scratch, n, top);
+    if (sorted != items) std::copy(sorted, sorted + n, items);
+    return;
+  }
+  const int d = top - 1;
+  std::array<std::size_t, 256> start{};
+  for (std::size_t i = 0; i < n; ++i) ++start[digit_of(items[i], d)];
+  if (std::any_of(start.begin(), start.end(), [n](std::size_t k) { return k == n; })) {
+    sort_by_digits_below(items, scratch, n, d);  // digit d is the same in every key
+    return;
+  }
+  const std::array<std::size_t, 256> count = start;
+  std::size_t sum = 0;
+  for (auto& k : start) {
+    const std::size_t here = k;
+    k = sum;
+    sum += here;
+  }
+  std::array<std::size_t, 256> next = start;
+  for (std::size_t i = 0; i < n; ++i) scratch[next[digit_of(items[i], d)]++] = items[i];
+  for (std::size_t k = 0; k < 256; ++k) {
+    if (count[k] == 0) continue;
+    sort_by_digits_below(scratch + start[k], items + start[k], count[k], d);
+    std::copy(scratch + start[k], scratch + start[k] + count[k], items + start[k]);
+  }
 }
 
 }  // namespace
@@ -48,7 +90,7 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
   const std::size_t parts =
       std::min(static_cast<std::size_t>(std::max(threads, 1)), n / kParallelMinimum);
   if (parts <= 1) {
-    sort_on_one_thread(items, scratch, n);
+    sort_by_digits_below(items, scratch, n, kDigits);
     return;
   }
   // Each thread owns one range of the array; per digit it counts its range's items by digit,
@@ -59,6 +101,8 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
   std::vector<std::uint64_t> set_in_any(parts, 0);
   std::vector<std::array<std::size_t, 256>> count(parts);
   std::barrier<> step(static_cast<std::ptrdiff_t>(parts));
+  std::atomic<std::size_t> next_part{0};  // the split's parts handed out (relaxed: the barrier
+                                          // before orders the placing, the join the sorting)
   auto work = [&](std::size_t part) {
     const std::size_t begin = n * part / parts;
     const std::size_t end = n * (part + 1) / parts;
@@ -80,16 +124,51 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
       in_any_key |= set_in_any[p];
     }
     const std::uint64_t varying = in_all_keys ^ in_any_key;
+    if (varying == 0) return;                             // every key equal: already in order
+    const int top = (63 - __builtin_clzll(varying)) / 8;  // the most significant varying digit
+    // Split by the top digit first, when no part of the split holds more than a thread's share
+    // (so that the parts, each sorted on one thread, in the cache, keep every thread busy).
+    auto& mine = count[part];
+    mine.fill(0);
+    for (std::size_t i = begin; i < end; ++i) ++mine[digit_of(items[i], top)];
+    step.arrive_and_wait();
+    std::array<std::size_t, 256> start{};  // of each part of the split
+    std::array<std::size_t, 256> next{};   // where this range's items of each part go
+    std::size_t largest = 0;
+    std::size_t sum = 0;
+    for (std::size_t k = 0; k < 256; ++k) {
+      start[k] = sum;
+      for (std::size_t p = 0; p < parts; ++p) {
+        if (p == part) next[k] = sum;
+        sum += count[p][k];
+      }
+      largest = std::max(largest, sum - start[k]);
+    }
+    if (largest * parts <= n) {
+      for (std::size_t i = begin; i < end; ++i) scratch[next[digit_of(items[i], top)]++] = items[i];
+      step.arrive_and_wait();  // every range placed
+      // The parts of the split, taken by whichever thread is free (any thread may sort any
+      // part: the result is the same), each sorted by the lower digits back into items.
+      for (std::size_t k = next_part.fetch_add(1, std::memory_order_relaxed); k < 256;
+           k = next_part.fetch_add(1, std::memory_order_relaxed)) {
+        const std::size_t size = (k + 1 < 256 ? start[k + 1] : n) - start[k];
+        if (size == 0) continue;
+        sort_by_digits_below(scratch + start[k], items + start[k], size, top);
+        std::copy(scratch + start[k], scratch + start[k] + size, items + start[k]);
+      }
+      return;
+    }
+    // Skewed (a far outlier, say): every varying digit's pass over the whole array, split over
+    // the threads, least significant first. The counts just read are rewritten below.
+    step.arrive_and_wait();
     KeyedId* from = items;
     KeyedId* to = scratch;
     for (int d = 0; d < kDigits; ++d) {
       if (((varying >> (8 * d)) & 0xFF) == 0) continue;
-      auto& mine = count[part];
       mine.fill(0);
       for (std::size_t i = begin; i < end; ++i) ++mine[digit_of(from[i], d)];
       step.arrive_and_wait();
-      std::array<std::size_t, 256> next{};
-      std::size_t sum = 0;
+      sum = 0;
       for (std::size_t k = 0; k < 256; ++k) {
         for (std::size_t p = 0; p < parts; ++p) {
           if (p == part) next[k] = sum;
