@@ -47,7 +47,7 @@ TEST(StableSortByKey, AnyThreadCountGivesStdStableSortsOrder) {
   }
 }
 
-TEST(StableSortByKey, FullWidthRandomKeysOnSeveralThreads) {
+TEST(StableSortByKey, FullWidthRandomKeysOnAnyThreadCount) {
   std::mt19937_64 random(7);
   std::vector<KeyedId> items(300000);
   for (std::size_t i = 0; i < items.size(); ++i) {
@@ -62,9 +62,12 @@ TEST(StableSortByKey, FullWidthRandomKeysOnSeveralThreads) {
   }
 }
 
-// Keys crowded into one part of the split by the top digit (a far outlier's key alone above
-// them): the sort takes its other path, every digit over the whole array, on every thread count;
-// and keys that split evenly but vary in the low bytes only within each part.
+// Which way a large array is sorted follows from its keys and the thread count: the crowded keys
+// (all but one in one part of the top digit's split: a far outlier's key alone above them) take
+// the per-digit passes over the whole array on 2, 3 and 8 threads; the layered keys (four even
+// parts, varying only in the low byte within each) take the split on 2 and 3 threads, each part
+// sorted past the digits it shares, and the per-digit passes on 8, where a part holds more than a
+// thread's share. One thread sorts both least significant digit first.
 TEST(StableSortByKey, CrowdedAndLayeredKeysGiveStdStableSortsOrder) {
   std::mt19937_64 random(11);
   std::vector<KeyedId> crowded(50000);

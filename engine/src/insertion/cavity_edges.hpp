@@ -5,8 +5,8 @@
 // epoch, whose common path has no data-dependent branch: which end of an edge is smaller, and
 // whether it is met for the first or the second time, are as unpredictable as a coin, and a
 // mispredicted branch per edge cost more than the rest of the table. Written as conditions, GCC 12
-// branched on both (about a sixth of the run's samples sat on those branches); so they are
-// masks.
+// branched on both (about a quarter of the replacement's samples sat on those branches); so they
+// are masks.
 #include <cstddef>
 #include <cstdint>
 #include <utility>
