@@ -25,6 +25,21 @@ std::size_t digit_of(const KeyedId& item, int d) {
   return static_cast<std::size_t>((item.first >> (8 * d)) & 0xFF);
 }
 
+// Whether one digit value holds all n items (the digit does not vary: its pass is skipped).
+bool all_in_one(const std::array<std::size_t, 256>& count, std::size_t n) {
+  return std::any_of(count.begin(), count.end(), [n](std::size_t k) { return k == n; });
+}
+
+// Counts by digit value become each value's first position (exclusive prefix sums).
+void counts_to_starts(std::array<std::size_t, 256>& count) {
+  std::size_t sum = 0;
+  for (auto& k : count) {
+    const std::size_t here = k;
+    k = sum;
+    sum += here;
+  }
+}
+
 // Sorts a[0, n) by digits [0, top) of the keys, stably, least significant first, passing between
 // a and b (one counting pass serves every digit; a digit the same in all n keys is skipped).
 // Returns a or b, whichever holds the result.
@@ -37,13 +52,8 @@ KeyedId* sort_low_digits(KeyedId* a, KeyedId* b, std::size_t n, int top) {
   KeyedId* to = b;
   for (int d = 0; d < top; ++d) {
     auto& c = count[static_cast<std::size_t>(d)];
-    if (std::any_of(c.begin(), c.end(), [n](std::size_t k) { return k == n; })) continue;
-    std::size_t sum = 0;
-    for (auto& k : c) {
-      const std::size_t here = k;
-      k = sum;
-      sum += here;
-    }
+    if (all_in_one(c, n)) continue;
+    counts_to_starts(c);
     for (std::size_t i = 0; i < n; ++i) to[c[digit_of(from[i], d)]++] = from[i];
     std::swap(from, to);
   }
@@ -59,23 +69,16 @@ KeyedId* sort_by_digits_below(KeyedId* a, KeyedId* b, std::size_t n, int top) {
   const int d = top - 1;
   std::array<std::size_t, 256> start{};
   for (std::size_t i = 0; i < n; ++i) ++start[digit_of(a[i], d)];
-  if (std::any_of(start.begin(), start.end(), [n](std::size_t k) { return k == n; })) {
-    return sort_by_digits_below(a, b, n, d);  // digit d is the same in every key
-  }
-  const std::array<std::size_t, 256> count = start;
-  std::size_t sum = 0;
-  for (auto& k : start) {
-    const std::size_t here = k;
-    k = sum;
-    sum += here;
-  }
+  if (all_in_one(start, n)) return sort_by_digits_below(a, b, n, d);
+  counts_to_starts(start);
   std::array<std::size_t, 256> next = start;
   for (std::size_t i = 0; i < n; ++i) b[next[digit_of(a[i], d)]++] = a[i];
   for (std::size_t k = 0; k < 256; ++k) {
-    if (count[k] == 0) continue;
+    const std::size_t size = (k + 1 < 256 ? start[k + 1] : n) - start[k];
+    if (size == 0) continue;
     KeyedId* const home = a + start[k];
-    const KeyedId* sorted = sort_by_digits_below(b + start[k], home, count[k], d);
-    if (sorted != home) std::copy(sorted, sorted + count[k], home);
+    const KeyedId* sorted = sort_by_digits_below(b + start[k], home, size, d);
+    if (sorted != home) std::copy(sorted, sorted + size, home);
   }
   return a;
 }
