@@ -39,8 +39,8 @@ class TetReplacement : public KnownReplacement<Sync> {
   // each of its three other faces holds p and one edge of the boundary face, shared with the one
   // other new tetrahedron on that edge (the boundary of a star-shaped cavity is a sphere: every
   // edge on exactly two faces). Those are paired through a table of edges. Impossible, nothing
-  // published (no live record changes), when an edge is not on exactly two boundary faces (an
-  // inexact kernel's cavity).
+  // published (no live record changes), when an edge is not on exactly two boundary faces or
+  // there are fewer than four faces (an inexact kernel's cavity).
   //
   // The new records are written into their slots as the edges pair up, with no scratch copy:
   // the slots are this thread's, unpublished (nothing references them, and a reused one's grace
@@ -84,8 +84,11 @@ class TetReplacement : public KnownReplacement<Sync> {
             global(self);
       }
     }
-    // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them.
-    if (edges.third_face() || 2 * edges.size() != 3 * n) {
+    // No edge on three faces, so every edge is paired exactly when there are 3n / 2 of them. A
+    // closed surface of triangles has at least four: fewer is an inexact kernel's cavity (one
+    // that took in every tetrahedron, infinite ones included, has no boundary at all and would
+    // leave an empty mesh behind).
+    if (n < 4 || edges.third_face() || 2 * edges.size() != 3 * n) {
       for (std::size_t j = n; j-- > 0;) commit_.give_back(ids[j]);
       scratch_created_.clear();
       return Replaced::Impossible;
