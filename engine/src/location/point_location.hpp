@@ -130,6 +130,9 @@ class PointLocator {
   TetId locate_alone(VertexId p, std::array<int, 4>& o, TetId start) {
     if (start == kNoTet || !mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
       start = any_live_tetrahedron();
+      // No live tetrahedron is a broken mesh (once an inexact kernel's cavity of every
+      // tetrahedron, now refused: tet_replacement.hpp): the point is abandoned, and counted.
+      if (start == kNoTet) return kNoTet;
     }
     const TetId t = walk(p, o, start);
     if (t != kNoTet) return t;
