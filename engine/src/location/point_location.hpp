@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <stdexcept>
 
 #include "dtlab/engine/triangulate.hpp"
 #include "location/location_policy.hpp"
@@ -130,9 +131,6 @@ class PointLocator {
   TetId locate_alone(VertexId p, std::array<int, 4>& o, TetId start) {
     if (start == kNoTet || !mesh_.tets.is_alive(start, std::memory_order_relaxed)) {
       start = any_live_tetrahedron();
-      // No live tetrahedron is a broken mesh (once an inexact kernel's cavity of every
-      // tetrahedron, now refused: tet_replacement.hpp): the point is abandoned, and counted.
-      if (start == kNoTet) return kNoTet;
     }
     const TetId t = walk(p, o, start);
     if (t != kNoTet) return t;
@@ -248,12 +246,14 @@ class PointLocator {
   }
 
   // The owning engine's last resorts: some live tetrahedron, and the live tetrahedron that
-  // contains p by testing every one.
-  TetId any_live_tetrahedron() const {
+  // contains p by testing every one. A mesh with no live tetrahedron is broken (once an inexact
+  // kernel's cavity of every tetrahedron, now refused: tet_replacement.hpp): an error, not a
+  // walk from no tetrahedron. Out of line and cold, so that the callers' code stays as it was.
+  [[gnu::noinline, gnu::cold]] TetId any_live_tetrahedron() const {
     for (TetId t = static_cast<TetId>(mesh_.tets.size()); t-- > 0;) {
       if (mesh_.tets.is_alive(t, std::memory_order_relaxed)) return t;
     }
-    return kNoTet;
+    throw std::logic_error("dtlab: the mesh has no live tetrahedron to walk from (an engine bug)");
   }
   TetId scan_for(VertexId p, std::array<int, 4>& o) {
     for (TetId t = 0; t < mesh_.tets.size(); ++t) {
