@@ -60,6 +60,32 @@ KeyedId* sort_low_digits(KeyedId* a, KeyedId* b, std::size_t n, int top) {
   return from;
 }
 
+KeyedId* sort_by_digits_below(KeyedId* a, KeyedId* b, std::size_t n, int top);
+
+// Part k of a split by one digit (its items placed from placed[start[k]] on, n items in all)
+// sorted by the digits below `digit`, its result in home[start[k]] on, while still in the cache.
+void sort_split_part(const std::array<std::size_t, 256>& start, std::size_t n, std::size_t k,
+                     KeyedId* placed, KeyedId* home, int digit) {
+  const std::size_t size = (k + 1 < 256 ? start[k + 1] : n) - start[k];
+  if (size == 0) return;
+  KeyedId* const to = home + start[k];
+  const KeyedId* sorted = sort_by_digits_below(placed + start[k], to, size, digit);
+  if (sorted != to) std::copy(sorted, sorted + size, to);
+}
+
+// Where range `part`'s items of each digit value go in a stable counting pass over several
+// ranges: after every item of a lower value, and after those of its own value in lower ranges.
+void range_starts(const std::vector<std::array<std::size_t, 256>>& count, std::size_t part,
+                  std::array<std::size_t, 256>& next) {
+  std::size_t sum = 0;
+  for (std::size_t k = 0; k < 256; ++k) {
+    for (std::size_t p = 0; p < count.size(); ++p) {
+      if (p == part) next[k] = sum;
+      sum += count[p][k];
+    }
+  }
+}
+
 // Sorts a[0, n) by digits [0, top) of the keys, stably, with b (n more) as scratch; returns a or
 // b, whichever holds the result. Small: least significant digit first. Large: split by digit
 // top - 1 (a counting pass from a into b, stable), then each part sorted by the digits below, its
@@ -73,13 +99,7 @@ KeyedId* sort_by_digits_below(KeyedId* a, KeyedId* b, std::size_t n, int top) {
   counts_to_starts(start);
   std::array<std::size_t, 256> next = start;
   for (std::size_t i = 0; i < n; ++i) b[next[digit_of(a[i], d)]++] = a[i];
-  for (std::size_t k = 0; k < 256; ++k) {
-    const std::size_t size = (k + 1 < 256 ? start[k + 1] : n) - start[k];
-    if (size == 0) continue;
-    KeyedId* const home = a + start[k];
-    const KeyedId* sorted = sort_by_digits_below(b + start[k], home, size, d);
-    if (sorted != home) std::copy(sorted, sorted + size, home);
-  }
+  for (std::size_t k = 0; k < 256; ++k) sort_split_part(start, n, k, b, a, d);
   return a;
 }
 
@@ -138,17 +158,15 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
     for (std::size_t i = begin; i < end; ++i) ++mine[digit_of(items[i], top)];
     step.arrive_and_wait();
     std::array<std::size_t, 256> start{};  // of each part of the split
-    std::array<std::size_t, 256> next{};   // where this range's items of each part go
     std::size_t largest = 0;
     std::size_t sum = 0;
     for (std::size_t k = 0; k < 256; ++k) {
       start[k] = sum;
-      for (std::size_t p = 0; p < parts; ++p) {
-        if (p == part) next[k] = sum;
-        sum += count[p][k];
-      }
+      for (std::size_t p = 0; p < parts; ++p) sum += count[p][k];
       largest = std::max(largest, sum - start[k]);
     }
+    std::array<std::size_t, 256> next{};  // where this range's items of each part go
+    range_starts(count, part, next);
     if (largest * parts <= n) {
       for (std::size_t i = begin; i < end; ++i) scratch[next[digit_of(items[i], top)]++] = items[i];
       step.arrive_and_wait();  // every range placed
@@ -156,11 +174,7 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
       // part: the result is the same), each sorted by the lower digits back into items.
       for (std::size_t k = next_part.fetch_add(1, std::memory_order_relaxed); k < 256;
            k = next_part.fetch_add(1, std::memory_order_relaxed)) {
-        const std::size_t size = (k + 1 < 256 ? start[k + 1] : n) - start[k];
-        if (size == 0) continue;
-        KeyedId* const home = items + start[k];
-        const KeyedId* sorted = sort_by_digits_below(scratch + start[k], home, size, top);
-        if (sorted != home) std::copy(sorted, sorted + size, home);
+        sort_split_part(start, n, k, scratch, items, top);
       }
       return;
     }
@@ -174,13 +188,7 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
       mine.fill(0);
       for (std::size_t i = begin; i < end; ++i) ++mine[digit_of(from[i], d)];
       step.arrive_and_wait();
-      sum = 0;
-      for (std::size_t k = 0; k < 256; ++k) {
-        for (std::size_t p = 0; p < parts; ++p) {
-          if (p == part) next[k] = sum;
-          sum += count[p][k];
-        }
-      }
+      range_starts(count, part, next);
       for (std::size_t i = begin; i < end; ++i) to[next[digit_of(from[i], d)]++] = from[i];
       // Every range placed (and every count read) before the next digit is counted.
       step.arrive_and_wait();
