@@ -46,20 +46,24 @@ void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
                           const TriangulateOptions& options) {
   Json list = Json::array();
   std::uint64_t postponed = 0;
+  std::uint64_t deferred = 0;
   for (const PartitionPass& p : passes) {
     Json one;
     put(one, {{"points", p.points},
               {"parts", p.parts},
               {"postponed", p.postponed},
+              {"deferred", p.deferred},
               {"stopped_walks", p.stopped_walks},
               {"seconds", p.seconds},
               {"setup_seconds", p.setup_seconds},
               {"imbalance", p.imbalance}});
     list.push_back(one);
     postponed += p.postponed;
+    deferred += p.deferred;
   }
   put(j, {{"partition_rounds", passes.size()},
           {"partition_postponed", postponed},
+          {"partition_deferred", deferred},
           {"points_per_part", options.points_per_part}});
   j["partition_passes"] = list;
 }

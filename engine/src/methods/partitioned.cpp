@@ -5,10 +5,12 @@
 // another arc, or whose walk would leave the tetrahedra no other thread writes, is given up
 // (PartitionSync) and waits for the next pass, whose curve and cuts lie elsewhere. So a thread
 // reads nothing another writes: no epochs, and its dead slots are reused at once. The passes follow
-// the BRIO rounds of the walk mode's order; what is left after the last round goes in by further
-// passes, the last ones on one thread. Walk mode only: the passes change the insertion order, which
-// the DAG's expected cost rests on.
+// the BRIO rounds of the walk mode's order; a round's pass ends when its first arc is done, and
+// the points the others have not tried wait for the next pass. What is left after the last round
+// goes in by further passes, the last ones on one thread. Walk mode only: the passes change the
+// insertion order, which the DAG's expected cost rests on.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -79,6 +81,11 @@ HilbertFrame moved_frame(const HilbertFrame& input, int k) {
           2 * input.extent};
 }
 
+// A BRIO round's pass, whose points are a random sample of the input's and which a later pass
+// always follows; or one of the passes after the last round, whose points are those given up or
+// deferred before (pass()).
+enum class PassKind { Round, Final };
+
 template <class K>
 class PartitionedRun {
  public:
@@ -87,6 +94,7 @@ class PartitionedRun {
         frame_(hilbert_frame(input.points, input.input_count, run_.threads)),
         part_of_(input.points.size(), 0),
         failed_(static_cast<std::size_t>(run_.threads)),
+        deferred_(static_cast<std::size_t>(run_.threads)),
         stopped_walks_(static_cast<std::size_t>(run_.threads), 0),
         busy_(static_cast<std::size_t>(run_.threads), 0.0),
         unlocated_(static_cast<std::size_t>(run_.threads)),
@@ -99,20 +107,27 @@ class PartitionedRun {
   }
 
   std::vector<Tetrahedron> run() {
-    std::vector<std::uint32_t> carried;  // postponed points, for the next pass
+    std::vector<std::uint32_t> carried;  // postponed and deferred points, for the next pass
     const auto rounds = brio_rounds(run_.order.size());
     for (const auto& [begin, end] : rounds) {
       std::vector<std::uint32_t> pending(run_.order.begin() + static_cast<std::ptrdiff_t>(begin),
                                          run_.order.begin() + static_cast<std::ptrdiff_t>(end));
       append_in_order(pending, carried);
-      carried = pass(pending, begin, parts_for(pending.size(), run_.options));
+      carried = pass(pending, begin, parts_for(pending.size(), run_.options), PassKind::Round);
     }
+    bool several_parts_pay = true;
     for (int final_pass = 0; !carried.empty(); ++final_pass) {
-      const int parts =
-          final_pass < kFinalParallelPasses ? parts_for(carried.size(), run_.options) : 1;
+      const int parts = several_parts_pay && final_pass < kFinalParallelPasses
+                            ? parts_for(carried.size(), run_.options)
+                            : 1;
       std::vector<std::uint32_t> pending;
       append_in_order(pending, carried);
-      carried = pass(pending, run_.order.size(), parts);
+      carried = pass(pending, run_.order.size(), parts, PassKind::Final);
+      // After a pass that gave up a third of its points or more, the next, with fewer and harder
+      // points (the hull's, whose cavities spread over its flat faces, which some cut crosses
+      // whatever the curve), would give up most: one thread does them sooner.
+      const PartitionPass& last = run_.stats.partition_passes.back();
+      several_parts_pay = 3 * last.postponed < last.points;
     }
     for (int i = 0; i < run_.threads; ++i) {
       run_.finish_thread(i, inserters_[static_cast<std::size_t>(i)]->dt);
@@ -130,11 +145,20 @@ class PartitionedRun {
   }
 
   // Inserts `pending` on `parts` threads; the vertices so far are the first four and those of
-  // order[0, vertices_end) not pending. Returns the points postponed.
+  // order[0, vertices_end) not pending. Returns the points postponed (given up) and, in a round's
+  // pass, those deferred: once one part has inserted all its points, the others stop and leave
+  // the points they have not tried to the next pass, which spreads them over every thread,
+  // instead of idle threads waiting for the slowest (the arcs' work differs, and so do the cores'
+  // speeds on a shared machine). The passes after the rounds run to their end.
   std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t vertices_end,
-                                  int parts) {
+                                  int parts, PassKind kind) {
     const auto start = std::chrono::steady_clock::now();
-    cut(parts, vertices_end);
+    // A hint, read between insertions; the threads' start and join order everything else.
+    first_part_done_.store(false, std::memory_order_relaxed);
+    const bool defers = kind == PassKind::Round && parts > 1;
+    // A round's points are a sample of the input's, so the input's quantiles split them evenly;
+    // the points after the rounds crowd where earlier arcs met or where a part stopped.
+    cut(parts, vertices_end, kind == PassKind::Round ? nullptr : &pending);
     if (parts > 1) sort_along_pass_curve(pending);
     for (int i = 0; i < run_.threads; ++i) {
       syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
@@ -144,23 +168,28 @@ class PartitionedRun {
     run_.on_threads([&](int i) {
       if (i >= parts) return;
       const auto thread_start = std::chrono::steady_clock::now();
-      insert_part(i, parts, pending);
+      insert_part(i, parts, pending, defers);
       busy_[static_cast<std::size_t>(i)] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - thread_start).count();
     });
-    std::vector<std::uint32_t> postponed;
+    std::vector<std::uint32_t> carried;
     for (auto& f : failed_) {
-      postponed.insert(postponed.end(), f.begin(), f.end());
+      carried.insert(carried.end(), f.begin(), f.end());
       f.clear();
     }
     PartitionPass record;
+    record.postponed = carried.size();
+    for (auto& d : deferred_) {
+      carried.insert(carried.end(), d.begin(), d.end());
+      d.clear();
+    }
+    record.deferred = carried.size() - record.postponed;
     for (std::uint64_t& stopped : stopped_walks_) {
       record.stopped_walks += stopped;
       stopped = 0;
     }
     record.points = pending.size();
     record.parts = static_cast<std::uint64_t>(parts);
-    record.postponed = postponed.size();
     record.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     record.setup_seconds = std::chrono::duration<double>(threads_start - start).count();
@@ -172,7 +201,7 @@ class PartitionedRun {
     }
     record.imbalance = sum > 0 ? most / (sum / parts) : 1.0;
     run_.stats.partition_passes.push_back(record);
-    return postponed;
+    return carried;
   }
 
   // A pass with several parts inserts along its own curve: each part's points are then one run,
@@ -197,20 +226,23 @@ class PartitionedRun {
   // pending points' are named as they are sorted). Cutting one
   // curve at other places would not do: the arcs of one curve meet along the faces of its coarse
   // cells whatever the cuts, and the points postponed there would be postponed again. The cuts
-  // are quantiles of a sample of all the points: a BRIO round is a random sample of them, so its
-  // parts get as many points; the postponed points crowd where the last arcs met, and quantiles
-  // of theirs would cut there again.
-  void cut(int parts, std::size_t vertices_end) {
+  // are quantiles of a sample of `from`'s points, or of all the points when `from` is null: a
+  // BRIO round is a random sample of them, so its parts get as many points. The points after the
+  // rounds are not: the deferred ones lie together on the arc where a part stopped, and with
+  // the input's quantiles one part got most of them (uniform:1000000, 2 threads, the first pass
+  // after the rounds: imbalance up to 1.35 against at most 1.08 with theirs, and no more points
+  // postponed; performance-log.md, thirteenth session).
+  void cut(int parts, std::size_t vertices_end, const std::vector<std::uint32_t>* from) {
     if (parts == 1) {
       partition_.cut({}, 1);
       return;
     }
     pass_frame_ = moved_frame(frame_, ++cuts_made_);
     std::vector<std::uint64_t> sample;
-    const std::size_t count = run_.input.input_count;
+    const std::size_t count = from ? from->size() : run_.input.input_count;
     const std::size_t step = std::max<std::size_t>(1, count / kCutSample);
     for (std::size_t i = 0; i < count; i += step) {
-      sample.push_back(pass_key(static_cast<std::uint32_t>(i)));
+      sample.push_back(pass_key(from ? (*from)[i] : static_cast<std::uint32_t>(i)));
     }
     std::sort(sample.begin(), sample.end());
     partition_.cut(sample, parts);
@@ -279,8 +311,9 @@ class PartitionedRun {
   }
 
   // Thread i's share of the pass: the pending points of its part, in the pass's order; after a
-  // give-up the walks go on from the next anchor (place_walk_starts).
-  void insert_part(int i, int parts, const std::vector<std::uint32_t>& pending) {
+  // give-up the walks go on from the next anchor (place_walk_starts). With `defers`, the part
+  // that inserts its last point first ends the pass for the others (pass()).
+  void insert_part(int i, int parts, const std::vector<std::uint32_t>& pending, bool defers) {
     const auto index = static_cast<std::size_t>(i);
     ThreadStats counters;  // added to stats.threads once (optimistic_worker.hpp says why)
     auto& dt = inserters_[index]->dt;
@@ -289,10 +322,12 @@ class PartitionedRun {
     const std::vector<Anchor>& anchors = anchors_[index];
     std::size_t next_anchor = 1;  // the first one is the pass's first start
     bool gave_up = false;         // since the last anchor
-    for (std::size_t position = 0; position < pending.size(); ++position) {
+    std::size_t position = 0;
+    for (; position < pending.size(); ++position) {
       const std::uint32_t v = pending[position];
       if (parts > 1 && part_of_[v] != i) continue;
       if (run_.stopping()) break;
+      if (defers && first_part_done_.load(std::memory_order_relaxed)) break;
       if (parts > 1 && next_anchor < anchors.size() && anchors[next_anchor].position == position) {
         const TetId start = anchors[next_anchor++].start;
         // Readable, so written by this thread alone: its aliveness can be asked.
@@ -322,6 +357,17 @@ class PartitionedRun {
         run_.progressed(i);
       }
     }
+    if (position == pending.size()) {
+      // A part that gave up on most of its points (an empty part, walks stopped at its border)
+      // has not done its share: ending the pass then would defer nearly everything.
+      const bool did_its_share = counters.inserted + counters.duplicates > failed.size();
+      if (defers && did_its_share) first_part_done_.store(true, std::memory_order_relaxed);
+    } else if (!run_.stopping()) {
+      std::vector<std::uint32_t>& deferred = deferred_[index];
+      for (; position < pending.size(); ++position) {
+        if (part_of_[pending[position]] == i) deferred.push_back(pending[position]);
+      }
+    }
     // The counters this method's insertions touch (count_outcome's and the abandonments).
     ThreadStats& total = run_.stats.threads[index];
     total.inserted += counters.inserted;
@@ -338,9 +384,11 @@ class PartitionedRun {
   int cuts_made_ = 0;
   std::vector<std::unique_ptr<PartitionSync>> syncs_;
   std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
-  std::vector<std::vector<std::uint32_t>> failed_;  // per thread, this pass
-  std::vector<std::uint64_t> stopped_walks_;        // per thread, this pass
-  std::vector<double> busy_;                        // per thread, this pass's seconds
+  std::vector<std::vector<std::uint32_t>> failed_;    // per thread, this pass
+  std::vector<std::vector<std::uint32_t>> deferred_;  // per thread, this pass: not tried
+  std::atomic<bool> first_part_done_{false};          // this pass: a part tried all its points
+  std::vector<std::uint64_t> stopped_walks_;          // per thread, this pass
+  std::vector<double> busy_;                          // per thread, this pass's seconds
   std::vector<std::unordered_map<std::uint32_t, int>> unlocated_;  // per thread: failed walks
   struct Anchor {
     std::size_t position;  // in the pass's pending points

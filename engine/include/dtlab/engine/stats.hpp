@@ -63,7 +63,9 @@ struct ThreadStats {
 struct PartitionPass {
   std::uint64_t points = 0;         // tried in this pass
   std::uint64_t parts = 0;          // threads inserting (1: the pass runs on one thread)
-  std::uint64_t postponed = 0;      // left for a later pass
+  std::uint64_t postponed = 0;      // given up: left for a later pass
+  std::uint64_t deferred = 0;       // not tried: the first part to finish ended the pass, and
+                                    // these wait for the next (only in a BRIO round's pass)
   std::uint64_t stopped_walks = 0;  // of those, walks stopped at the part's border (or
                                     // with no readable start)
   double seconds = 0.0;             // the pass's wall time
