@@ -1,25 +1,24 @@
 #include "mesh/shared_mesh.hpp"
 
-#include <algorithm>
-#include <span>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <new>
+#include <span>
+#include <type_traits>
+
+#include "support/move_pages.hpp"
 #include "support/parallel_ranges.hpp"
-#include "support/populate_pages.hpp"
 
 namespace dtlab::engine {
-namespace {
-
-// Blocks appended to the output after one mapping of its pages (a block's kept tetrahedra take
-// about 1 MiB of output in a walk-mode run).
-constexpr std::size_t kOutputGroup = 2;
-
-}  // namespace
 
 // Each thread takes a contiguous share of the store's blocks; a block's tetrahedra go after those
-// of every lower block. Releasing, the blocks are packed in place, then appended and let go one at
-// a time. Not releasing (the store is read again), per-block counts come first, and the copy goes
-// a group of `threads` blocks at a time into the output, grown (and zeroed, by the calling
-// thread) a group at a time. Either way the output and the whole store never coexist.
+// of every lower block. Releasing, the blocks are packed in place, then moved into the output and
+// let go one at a time. Not releasing (the store is read again), per-block counts come first, and
+// the copy goes a group of `threads` blocks at a time into the output, grown (and zeroed, by the
+// calling thread) a group at a time. Either way the output and the whole store never coexist.
 std::vector<Tetrahedron> SharedMesh::collect(
     VertexId vertex_limit, const std::vector<std::pair<VertexId, VertexId>>& duplicates,
     bool release, int threads) const {
@@ -77,36 +76,52 @@ std::vector<Tetrahedron> SharedMesh::collect(
     return out;
   }
   if (release) {
-    // Each thread packs its share of the blocks in place (TetStore::pack_quads); then one thread
-    // appends them block by block, each let go once appended. An append constructs the copies
-    // from the packed ones: a resize would first zero the output on this thread alone (that and
-    // the blocks' copy groups made the step slower on two threads than on one).
-    std::vector<std::span<const Quad>> packed(blocks);
+    // Each thread packs its share of the blocks in place (TetStore::pack_quads) and shifts each
+    // block's quads to the offset within a page of their place in the output; then one thread
+    // moves them there block by block (move_by_pages: their whole pages change places, the
+    // partial pages at either end are copied; the moves take the process's memory map one at a
+    // time anyway) and lets each block go. No output page is faulted in and no store page that
+    // moved is freed: at 1M points on two threads the old step (the output's pages mapped by
+    // both threads, each block copied into them, then unmapped) took 80-90 ms of it
+    // (performance-log.md, thirteenth session).
+    std::vector<std::span<Quad>> packed(blocks);
     over_blocks(0, blocks, [&](std::size_t block) {
       const auto [begin, end] = slots_of(block);
       packed[block] = tets.pack_quads(block, end - begin, kept, [&](VertexId v) {
         return representative.empty() ? v : representative[v];
       });
     });
-    std::size_t total = 0;
-    for (const auto& quads : packed) total += quads.size();
+    std::vector<std::size_t> block_start(blocks + 1, 0);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      block_start[b + 1] = block_start[b] + packed[b].size();
+    }
+    const std::size_t total = block_start[blocks];
     std::vector<Tetrahedron> out;
     out.reserve(total);
-    // A group of blocks at a time: the output's pages for the group mapped by the threads at once
-    // (populate_pages), then the group appended, each block let go once appended. Mapping the
-    // whole output first would make it coexist with the whole store (107 bytes a point more at
-    // the run's peak); a group's pages at a time keep it growing as the store shrinks.
-    for (std::size_t group = 0; group < blocks; group += kOutputGroup) {
-      const std::size_t group_end = std::min(blocks, group + kOutputGroup);
-      std::size_t count = 0;
-      for (std::size_t block = group; block < group_end; ++block) count += packed[block].size();
-      populate_pages(out.data() + out.size(), count * sizeof(Tetrahedron), parts);
-      for (std::size_t block = group; block < group_end; ++block) {
-        out.insert(out.end(), packed[block].begin(), packed[block].end());
-        const auto [begin, end] = slots_of(block);
-        if (begin < end) tets.release_block_of(static_cast<TetId>(begin));
-      }
+    char* const output = reinterpret_cast<char*>(out.data());
+    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    // Room for the shift: a block's quads take at most half of it (16 bytes a slot of 32 or
+    // more), and the other half (1 MiB) is more than a page.
+    static_assert(2 * sizeof(Quad) <= sizeof(Tet) &&
+                  TetStore::kBlockSize * sizeof(Quad) >= std::size_t{1} << 16);
+    over_blocks(0, blocks, [&](std::size_t block) {
+      char* const at = reinterpret_cast<char*>(packed[block].data());
+      const std::uintptr_t shift =
+          reinterpret_cast<std::uintptr_t>(output + block_start[block] * sizeof(Quad)) % page;
+      std::memmove(at + shift, at, packed[block].size_bytes());
+      packed[block] = {std::launder(reinterpret_cast<Quad*>(at + shift)), packed[block].size()};
+    });
+    for (std::size_t block = 0; block < blocks; ++block) {
+      move_by_pages(reinterpret_cast<char*>(packed[block].data()),
+                    output + block_start[block] * sizeof(Quad), packed[block].size_bytes());
+      const auto [begin, end] = slots_of(block);
+      if (begin < end) tets.release_block_of(static_cast<TetId>(begin));
     }
+    // The quads are in the output's reserved room; inserted over themselves (a memmove onto the
+    // same bytes) they become the vector's items without a write of other values.
+    static_assert(std::is_same_v<Tetrahedron, Quad> && std::is_trivially_copyable_v<Quad>);
+    const Tetrahedron* const moved = std::launder(reinterpret_cast<const Tetrahedron*>(output));
+    out.insert(out.end(), moved, moved + total);
     return out;
   }
   // block_start[b]: where block b's first kept tetrahedron goes.

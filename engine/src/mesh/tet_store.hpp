@@ -247,7 +247,7 @@ class TetStore {
   // quad never lands on a slot not read yet). The block holds no records afterwards: only
   // release_block_of may follow. Blocks are disjoint, so threads pack different ones at once.
   template <class Keep, class Rename>
-  std::span<const Quad> pack_quads(std::size_t b, std::size_t slots, Keep keep, Rename rename) {
+  std::span<Quad> pack_quads(std::size_t b, std::size_t slots, Keep keep, Rename rename) {
     static_assert(sizeof(Quad) <= sizeof(Tet));
     char* const block = blocks_[b].load(std::memory_order_acquire);
     std::size_t packed = 0;
@@ -259,7 +259,7 @@ class TetStore {
       std::memcpy(block + packed * sizeof(Quad), &q, sizeof(Quad));
       ++packed;
     }
-    return {std::launder(reinterpret_cast<const Quad*>(block)), packed};
+    return {std::launder(reinterpret_cast<Quad*>(block)), packed};
   }
   // Frees the block that holds slot t (the output step's last use of the store).
   void release_block_of(TetId t) {
