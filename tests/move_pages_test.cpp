@@ -7,8 +7,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <new>
 #include <vector>
 
 #include "support/move_pages.hpp"
@@ -59,6 +62,31 @@ TEST(MoveByPages, SameOffsetWithinAPageMovesTheWholePagesAndCopiesTheEnds) {
       for (char* c = to + bytes; c < target.memory + target.bytes; ++c) ASSERT_EQ(*c, kGuard);
     }
   }
+}
+
+// As the output step uses it: quads moved into a vector's reserved room at the offset within a
+// page of their place there, then inserted over themselves to become the vector's items.
+TEST(MoveByPages, IntoAVectorsReservedRoomThenInsertedOverThemselves) {
+  using Quad = std::array<std::uint32_t, 4>;
+  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  const std::size_t count = 3 * page / sizeof(Quad) + 5;  // three pages and a bit
+  std::vector<Quad> out;
+  out.reserve(count);
+  char* const to = reinterpret_cast<char*>(out.data());
+  const std::size_t offset = reinterpret_cast<std::uintptr_t>(to) % page;
+  Mapping source(8 * page);
+  ASSERT_NE(source.memory, nullptr);
+  std::vector<Quad> expected(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto k = static_cast<std::uint32_t>(4 * i);
+    expected[i] = {k, k + 1, k + 2, k + 3};
+  }
+  std::memcpy(source.memory + offset, expected.data(), count * sizeof(Quad));
+  EXPECT_GE(engine::move_by_pages(source.memory + offset, to, count * sizeof(Quad)), 2 * page);
+  const Quad* const moved = std::launder(reinterpret_cast<const Quad*>(to));
+  out.insert(out.end(), moved, moved + count);
+  EXPECT_EQ(out, expected);
+  EXPECT_EQ(engine::move_by_pages(source.memory, to, 0), 0u);  // nothing to move
 }
 
 TEST(MoveByPages, OtherOffsetsWithinAPageAreCopied) {

@@ -51,6 +51,7 @@ void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
     Json one;
     put(one, {{"points", p.points},
               {"parts", p.parts},
+              {"after_rounds", p.after_rounds},
               {"postponed", p.postponed},
               {"deferred", p.deferred},
               {"stopped_walks", p.stopped_walks},

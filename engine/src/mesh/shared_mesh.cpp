@@ -105,6 +105,7 @@ std::vector<Tetrahedron> SharedMesh::collect(
     static_assert(2 * sizeof(Quad) <= sizeof(Tet) &&
                   TetStore::kBlockSize * sizeof(Quad) >= std::size_t{1} << 16);
     over_blocks(0, blocks, [&](std::size_t block) {
+      if (packed[block].empty()) return;
       char* const at = reinterpret_cast<char*>(packed[block].data());
       const std::uintptr_t shift =
           reinterpret_cast<std::uintptr_t>(output + block_start[block] * sizeof(Quad)) % page;

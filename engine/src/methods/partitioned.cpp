@@ -127,7 +127,7 @@ class PartitionedRun {
       // points (the hull's, whose cavities spread over its flat faces, which some cut crosses
       // whatever the curve), would give up most: one thread does them sooner.
       const PartitionPass& last = run_.stats.partition_passes.back();
-      several_parts_pay = 3 * last.postponed < last.points;
+      several_parts_pay = several_parts_pay && 3 * last.postponed < last.points;
     }
     for (int i = 0; i < run_.threads; ++i) {
       run_.finish_thread(i, inserters_[static_cast<std::size_t>(i)]->dt);
@@ -146,7 +146,7 @@ class PartitionedRun {
 
   // Inserts `pending` on `parts` threads; the vertices so far are the first four and those of
   // order[0, vertices_end) not pending. Returns the points postponed (given up) and, in a round's
-  // pass, those deferred: once one part has inserted all its points, the others stop and leave
+  // pass, those deferred: once one part has tried all its points, the others stop and leave
   // the points they have not tried to the next pass, which spreads them over every thread,
   // instead of idle threads waiting for the slowest (the arcs' work differs, and so do the cores'
   // speeds on a shared machine). The passes after the rounds run to their end.
@@ -190,6 +190,7 @@ class PartitionedRun {
     }
     record.points = pending.size();
     record.parts = static_cast<std::uint64_t>(parts);
+    record.after_rounds = kind == PassKind::Final;
     record.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     record.setup_seconds = std::chrono::duration<double>(threads_start - start).count();
@@ -322,12 +323,14 @@ class PartitionedRun {
     const std::vector<Anchor>& anchors = anchors_[index];
     std::size_t next_anchor = 1;  // the first one is the pass's first start
     bool gave_up = false;         // since the last anchor
+    std::size_t tried = 0;        // of the part's points
     std::size_t position = 0;
     for (; position < pending.size(); ++position) {
       const std::uint32_t v = pending[position];
       if (parts > 1 && part_of_[v] != i) continue;
       if (run_.stopping()) break;
       if (defers && first_part_done_.load(std::memory_order_relaxed)) break;
+      ++tried;
       if (parts > 1 && next_anchor < anchors.size() && anchors[next_anchor].position == position) {
         const TetId start = anchors[next_anchor++].start;
         // Readable, so written by this thread alone: its aliveness can be asked.
@@ -358,9 +361,11 @@ class PartitionedRun {
       }
     }
     if (position == pending.size()) {
-      // A part that gave up on most of its points (an empty part, walks stopped at its border)
-      // has not done its share: ending the pass then would defer nearly everything.
-      const bool did_its_share = counters.inserted + counters.duplicates > failed.size();
+      // A part with few points (keys crowded by a far outlier cut unevenly, or none at all) or
+      // that gave up on most of them (walks stopped at its border) has not done its share of the
+      // pass: ending it then would defer nearly everything.
+      const bool did_its_share = 2 * static_cast<std::size_t>(parts) * tried >= pending.size() &&
+                                 counters.inserted + counters.duplicates > failed.size();
       if (defers && did_its_share) first_part_done_.store(true, std::memory_order_relaxed);
     } else if (!run_.stopping()) {
       std::vector<std::uint32_t>& deferred = deferred_[index];

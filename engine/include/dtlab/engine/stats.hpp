@@ -63,6 +63,7 @@ struct ThreadStats {
 struct PartitionPass {
   std::uint64_t points = 0;         // tried in this pass
   std::uint64_t parts = 0;          // threads inserting (1: the pass runs on one thread)
+  bool after_rounds = false;        // a pass after the last BRIO round (it never defers)
   std::uint64_t postponed = 0;      // given up: left for a later pass
   std::uint64_t deferred = 0;       // not tried: the first part to finish ended the pass, and
                                     // these wait for the next (only in a BRIO round's pass)
