@@ -80,10 +80,10 @@ std::vector<Tetrahedron> SharedMesh::collect(
     // block's quads to the offset within a page of their place in the output; then one thread
     // moves them there block by block (move_by_pages: their whole pages change places, the
     // partial pages at either end are copied; the moves take the process's memory map one at a
-    // time anyway) and lets each block go. No output page is faulted in and no store page that
-    // moved is freed: at 1M points on two threads the old step (the output's pages mapped by
-    // both threads, each block copied into them, then unmapped) took 80-90 ms of it
-    // (performance-log.md, thirteenth session).
+    // time anyway) and lets each block go. Only the partial pages at the blocks' ends (two a
+    // block at most) are faulted in, and no store page that moved is freed: at 1M points on two
+    // threads the old step (the output's pages mapped by both threads, each block copied into them,
+    // then unmapped) took 80-90 ms of it (performance-log.md, thirteenth session).
     std::vector<std::span<Quad>> packed(blocks);
     over_blocks(0, blocks, [&](std::size_t block) {
       const auto [begin, end] = slots_of(block);
@@ -100,8 +100,8 @@ std::vector<Tetrahedron> SharedMesh::collect(
     out.reserve(total);
     char* const output = reinterpret_cast<char*>(out.data());
     const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-    // Room for the shift: a block's quads take at most half of it (16 bytes a slot of 32 or
-    // more), and the other half (1 MiB) is more than a page.
+    // Room for the shift (less than a page): a block's quads take at most half of it (16 bytes a
+    // slot of 32 or more), and the other half (1 MiB) holds a page of up to 64 KiB.
     static_assert(2 * sizeof(Quad) <= sizeof(Tet) &&
                   TetStore::kBlockSize * sizeof(Quad) >= std::size_t{1} << 16);
     over_blocks(0, blocks, [&](std::size_t block) {

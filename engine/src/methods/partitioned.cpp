@@ -125,7 +125,7 @@ class PartitionedRun {
       carried = pass(pending, run_.order.size(), parts, PassKind::Final);
       // After a pass that gave up a third of its points or more, the next, with fewer and harder
       // points (the hull's, whose cavities spread over its flat faces, which some cut crosses
-      // whatever the curve), would give up most: one thread does them sooner.
+      // whatever the curve), would give up most: one thread does them and the rest sooner.
       const PartitionPass& last = run_.stats.partition_passes.back();
       several_parts_pay = several_parts_pay && 3 * last.postponed < last.points;
     }
