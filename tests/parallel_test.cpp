@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <mutex>
+#include <random>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -1031,6 +1032,71 @@ TEST(ParallelMethods, PartitionedDefersWhatTheSlowerPartsHaveNotTried) {
     EXPECT_EQ(result.stats.partition_passes.back().deferred, 0u) << seed;
   }
   EXPECT_GT(deferred, 0u);
+}
+
+// The partitioned method's cuts: two parts are slabs across an axis, never the axis of the pass
+// of several parts before, nor one along which the points spread less than half as far as along
+// the widest (a flat input is not cut across its thin side); a long, thin input, with one such
+// axis, has slabs every other pass and arcs of a curve between; more parts are arcs. The mesh is
+// the unique one whatever the cuts.
+TEST(ParallelMethods, PartitionedCutsTwoPartsIntoSlabsAcrossTurningAxes) {
+  auto box = [](double x, double y, double z) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<predicates::Point3> points(3000);
+    for (auto& p : points) p = {x * unit(rng), y * unit(rng), z * unit(rng)};
+    return points;
+  };
+  struct Case {
+    const char* name;
+    std::vector<predicates::Point3> points;
+    int threads;
+  };
+  const Case cases[] = {{"cube", box(1, 1, 1), 2},
+                        {"flat", box(1, 1, 0.01), 2},
+                        {"needle", box(1, 0.01, 0.01), 2},
+                        {"cube, 4 threads", box(1, 1, 1), 4}};
+  for (const Case& c : cases) {
+    const auto expected =
+        engine::canonical_tetrahedra(engine::triangulate(c.points, {}).tetrahedra);
+    engine::TriangulateOptions options;
+    options.location = engine::Location::Walk;
+    options.method = Method::Partitioned;
+    options.threads = c.threads;
+    options.points_per_part = 16;
+    const auto result = engine::triangulate(c.points, options);
+    EXPECT_EQ(engine::canonical_tetrahedra(result.tetrahedra), expected) << c.name;
+    EXPECT_EQ(result.stats.abandoned_insertions, 0u) << c.name;
+    std::vector<int> cuts;        // the passes of several parts', in order
+    std::vector<int> round_cuts;  // of those, the BRIO rounds' (their points sample the input)
+    for (const engine::PartitionPass& pass : result.stats.partition_passes) {
+      if (pass.parts == 1) {
+        EXPECT_EQ(pass.cut_axis, -1) << c.name;
+        continue;
+      }
+      cuts.push_back(pass.cut_axis);
+      if (!pass.after_rounds) round_cuts.push_back(pass.cut_axis);
+      if (pass.parts > 2) {
+        EXPECT_EQ(pass.cut_axis, -1) << c.name << ": " << pass.parts << " parts are arcs";
+      }
+    }
+    ASSERT_GE(round_cuts.size(), 4u) << c.name;
+    for (std::size_t i = 1; i < cuts.size(); ++i) {
+      if (cuts[i] >= 0) {
+        EXPECT_NE(cuts[i], cuts[i - 1]) << c.name << ": pass " << i;
+      }
+    }
+    // The rounds' passes, whose points spread as the input's: every axis of a cube in turn, the
+    // two wide ones of the flat box, the needle's length every other pass.
+    const std::string name = c.name;
+    for (std::size_t i = 0; i < round_cuts.size(); ++i) {
+      int expected_axis = -1;
+      if (name == "cube") expected_axis = static_cast<int>(i % 3);
+      if (name == "flat") expected_axis = static_cast<int>(i % 2);
+      if (name == "needle") expected_axis = i % 2 == 0 ? 0 : -1;
+      EXPECT_EQ(round_cuts[i], expected_axis) << c.name << ": pass " << i;
+    }
+  }
 }
 
 // The partitioned method and the lock grid need the walk mode, and each says why.

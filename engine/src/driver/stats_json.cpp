@@ -41,6 +41,14 @@ void put_threads(Json& j, const TriangulationStats& s, const TriangulateOptions&
   j["per_thread"] = per_thread;
 }
 
+// How a pass of the partitioned method cut its parts: "x", "y" or "z" (the curve's halves, slabs
+// across that axis), "curve" (arcs cut at the keys' quantiles), or "none" (one part).
+const char* cut_name(const PartitionPass& p) {
+  if (p.parts <= 1) return "none";
+  if (p.cut_axis < 0 || p.cut_axis > 2) return "curve";
+  return std::array{"x", "y", "z"}[static_cast<std::size_t>(p.cut_axis)];
+}
+
 // The partitioned method's passes, one object each, and their count.
 void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
                           const TriangulateOptions& options) {
@@ -51,6 +59,7 @@ void put_partition_passes(Json& j, const std::vector<PartitionPass>& passes,
     Json one;
     put(one, {{"points", p.points},
               {"parts", p.parts},
+              {"cut", cut_name(p)},
               {"after_rounds", p.after_rounds},
               {"postponed", p.postponed},
               {"deferred", p.deferred},

@@ -28,6 +28,12 @@ constexpr std::uint64_t spread_bits(std::uint32_t v) {
   return s;
 }
 
+// The octants of every level side by side: x y z's bits interleaved (bit b of x at 3 b + 2, of y
+// at 3 b + 1, of z at 3 b), the highest level first.
+constexpr std::uint64_t interleave(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  return (spread_bits(x) << 2) | (spread_bits(y) << 1) | spread_bits(z);
+}
+
 // The definition, after Skilling ("Programming the Hilbert curve", 2004): the curve is built from
 // the most significant bit down; at each level the sub-cube's frame is a reflection and an axis
 // exchange of the parent's, and applying those transformations to the lower bits of the
@@ -59,7 +65,7 @@ constexpr std::uint64_t hilbert_key_by_transforms(std::uint32_t x, std::uint32_t
   for (std::uint32_t& a : axis) a ^= flip;
   // Interleave, most significant first, axis 0 before 1 before 2: bit b of axis k lands at
   // 3 b + 2 - k.
-  return (spread_bits(axis[0]) << 2) | (spread_bits(axis[1]) << 1) | spread_bits(axis[2]);
+  return interleave(axis[0], axis[1], axis[2]);
 }
 
 // The automaton. An octant is x y z's bits at one level, x's highest (0..7); a state's entry for
@@ -129,14 +135,39 @@ class HilbertStates {
 
   [[nodiscard]] constexpr int states() const { return states_; }
 
+  // A state whose curve fills the half of its cube below the middle across `axis` (0 x, 1 y,
+  // 2 z) before the half above: its first four octants are those with that axis's bit clear.
+  // Every axis has one (the states are the curve's orientations; -1 would mean a bad table).
+  [[nodiscard]] constexpr int state_splitting(int axis) const {
+    const int bit = 2 - axis;  // x's bit is an octant's highest
+    for (int s = 0; s < states_; ++s) {
+      bool splits = true;
+      for (int o = 0; o < 8; ++o) {
+        const bool upper = ((o >> bit) & 1) != 0;
+        splits = splits &&
+                 (single_[static_cast<std::size_t>(s)][static_cast<std::size_t>(o)].digits >= 4) ==
+                     upper;
+      }
+      if (splits) return s;
+    }
+    return -1;
+  }
+
   // The key of cell (x, y, z) of the 2^bits grid (bits <= 21), as hilbert_key_by_transforms.
   [[nodiscard]] constexpr std::uint64_t key(std::uint32_t x, std::uint32_t y, std::uint32_t z,
                                             unsigned bits) const {
+    return key_of_octants(interleave(x, y, z), bits);
+  }
+
+  // The same key from the cell's coordinates interleaved (interleave), on the curve whose cube is
+  // in orientation `root` (0: the definition's; another state: the curve under a symmetry of the
+  // cube, a Hilbert curve too).
+  [[nodiscard]] constexpr std::uint64_t key_of_octants(std::uint64_t octants, unsigned bits,
+                                                       int root = 0) const {
     assert(bits >= 1 && bits <= 21);  // 3 bits a level in 63
-    // The octants of every level side by side: x y z interleaved, the highest level first.
-    const std::uint64_t octants = (spread_bits(x) << 2) | (spread_bits(y) << 1) | spread_bits(z);
+    assert(root >= 0 && root < states_);
     std::uint64_t key = 0;
-    std::uint8_t state = 0;
+    auto state = static_cast<std::uint8_t>(root);
     unsigned level = bits;
     if (level % 2 == 1) {  // an odd count: the top level alone
       --level;

@@ -1,11 +1,13 @@
 #pragma once
-// The partitioned method's map from space to threads for one pass (partitioned.cpp): the pass's
-// Hilbert curve (location/insertion_order.hpp, hilbert_key_in) cut into `parts` arcs, one a part,
-// at the quantiles j / parts of the pass's points (or a sample of them), so that each part gets
-// as many points to insert. The arcs do not wrap around: each is one run of the curve, so that a
-// thread inserting its arc's points in curve order walks on from one to the next. (A wrapping last
-// arc, from the curve's end to its start, was two runs far apart: the thread's walk from the
-// first to the second was stopped at the other parts' border, and with it every later walk.)
+// The partitioned method's map from space to threads for one pass (partitioned.cpp): the points'
+// keys in the pass (their positions along the pass's Hilbert curve, pass_curve.hpp, or their
+// coordinates across the slabs' axis) cut into `parts` ranges, one a part, at the quantiles
+// j / parts of the pass's points (or a sample of them), so that each part gets as many points to
+// insert. Along a curve each part is an arc; arcs do not wrap around: each is one run of the curve,
+// so that a thread inserting its arc's points in curve order walks on from one to the next. (A
+// wrapping last arc, from the curve's end to its start, was two runs far apart: the thread's walk
+// from the first to the second was stopped at the other parts' border, and with it every later
+// walk.)
 #include <algorithm>
 #include <cstdint>
 #include <span>

@@ -1,15 +1,19 @@
 // The partitioned method (after Marot, Pellerin and Remacle 2019; docs/design.md, "The
 // partitioned method"): no lock on the hot path. Each pass lays a Hilbert curve through a cube
-// moved against the points and cuts it into one arc a thread (CurvePartition); a thread inserts
-// the pass's points of its arc, and an insertion that would change a tetrahedron with a vertex of
-// another arc, or whose walk would leave the tetrahedra no other thread writes, is given up
-// (PartitionSync) and waits for the next pass, whose curve and cuts lie elsewhere. So a thread
-// reads nothing another writes: no epochs, and its dead slots are reused at once. The passes follow
-// the BRIO rounds of the walk mode's order; a round's pass ends when its first arc is done, and
-// the points the others have not tried wait for the next pass. What is left after the last round
-// goes in by further passes, the last ones on one thread. Walk mode only: the passes change the
-// insertion order, which the DAG's expected cost rests on.
+// moved against the points and cuts it into one arc a thread (CurvePartition): two arcs are the
+// curve's halves, laid to be slabs on either side of a plane across one axis, the axes taking
+// turns; more are cut at the keys' quantiles. A thread inserts the pass's points of its arc along
+// the curve, and an insertion that
+// would change a tetrahedron with a vertex of another part, or whose walk would leave the
+// tetrahedra no other thread writes, is given up (PartitionSync) and waits for the next pass,
+// whose cuts lie elsewhere. So a thread reads nothing another writes: no epochs, and its dead
+// slots are reused at once. The passes follow the BRIO rounds of the walk mode's order; a round's
+// pass ends when its first part is done, and the points the others have not tried wait for the
+// next pass. What is left after the last round goes in by further passes, the last ones on one
+// thread. Walk mode only: the passes change the insertion order, which the DAG's expected cost
+// rests on.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -24,6 +28,7 @@
 #include "methods/method_input.hpp"
 #include "methods/parallel_run.hpp"
 #include "methods/partition_sync.hpp"
+#include "methods/pass_curve.hpp"
 #include "support/parallel_ranges.hpp"
 #include "support/populate_pages.hpp"
 #include "support/radix_sort.hpp"
@@ -33,20 +38,20 @@ namespace {
 
 // Passes after the last round that may still use several parts; then one part inserts the rest.
 constexpr int kFinalParallelPasses = 3;
-// The passes' curves: a grid of 2^10 cells a side over twice the input's cube (512 across the
-// input), at about half the cost of the walk mode's 21 bits (keys are taken for every vertex in
-// every pass). Fine enough to cut and order points that spread through their box (512^3 cells, over
-// a hundred a point at 1M); points crowded into a few cells (a far outlier) share keys, so the cuts
-// fall unevenly and the passes are unbalanced: slower, never wrong (a part is any set of points).
-constexpr unsigned kPassKeyBits = 10;
 // Keys sampled to place the cuts.
 constexpr std::size_t kCutSample = 4096;
+// Two parts are slabs on either side of a plane across one axis: the least boundary that halves a
+// box, so the fewest insertions cross it (uniform:1000000, 2 threads: about 49,000 points
+// postponed against 90,000 with arcs cut at any key). The pass's curve is laid so that its two
+// halves are the slabs (next_slab_axis, cut), so each part is still one arc. More parts are arcs
+// cut at the keys' quantiles: P slabs would meet at P - 1 planes.
+constexpr bool kSlabs = true;
 // Tetrahedra looked at around an anchor point for a readable start (place_walk_starts).
 constexpr std::size_t kStartSearch = 4096;
 // A part's anchors: every this many of its pending points in a pass (place_walk_starts).
 constexpr std::size_t kAnchorSpacing = 256;
 
-// A part gets at least options.points_per_part points: in smaller passes the arcs are short,
+// A part gets at least options.points_per_part points: in smaller passes the parts are small,
 // most insertions cross a cut, and one thread is faster.
 int parts_for(std::size_t points, const TriangulateOptions& options) {
   const std::size_t most = static_cast<std::size_t>(std::clamp(options.threads, 1, 255));
@@ -68,17 +73,23 @@ std::vector<std::pair<std::size_t, std::size_t>> brio_rounds(std::size_t m) {
   return rounds;
 }
 
-// Pass k's cube: twice the input's, its corner moved back by a fraction of the input's side on
-// each axis (the fractions a low-discrepancy sequence: the additive recurrence by the reciprocals
-// of the plastic number's powers, so that successive passes move the curve's coarse cell faces,
-// where the arcs meet, to new places through the points).
-HilbertFrame moved_frame(const HilbertFrame& input, int k) {
+// Pass k's curve (PassCurve): its cube twice the input's, its corner moved back on each axis by a
+// fraction of the input's side, in whole cells of the curve's grid (the fractions a
+// low-discrepancy sequence: the additive recurrence by the reciprocals of the plastic number's
+// powers, so that successive passes move the curve's coarse cell faces, where the arcs meet, to
+// new places through the points). The grid, 512 cells across the input, is fine enough to cut
+// and order points that spread through their box (512^3 cells, over a hundred a point at 1M);
+// points crowded into a few cells (a far outlier) share keys, so the cuts fall unevenly and the
+// passes are unbalanced: slower, never wrong (a part is any set of points).
+std::array<std::uint32_t, 3> pass_shift(int k) {
   constexpr double kStep[3] = {0.8191725133961645, 0.6710436067037893, 0.5497004779019703};
-  double shift[3];
-  for (int a = 0; a < 3; ++a) shift[a] = std::fmod(0.5 + kStep[a] * k, 1.0);
-  return {{input.lo.x - shift[0] * input.extent, input.lo.y - shift[1] * input.extent,
-           input.lo.z - shift[2] * input.extent},
-          2 * input.extent};
+  std::array<std::uint32_t, 3> shift{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double fraction = std::fmod(0.5 + kStep[a] * k, 1.0);
+    shift[a] = std::min(PassCurve::kInputCells - 1,
+                        static_cast<std::uint32_t>(fraction * PassCurve::kInputCells));
+  }
+  return shift;
 }
 
 // A BRIO round's pass, whose points are a random sample of the input's and which a later pass
@@ -91,7 +102,6 @@ class PartitionedRun {
  public:
   explicit PartitionedRun(const MethodInput& input, TriangulationStats& stats)
       : run_(input, stats, std::max(1, input.options.threads), /*lock_words=*/false),
-        frame_(hilbert_frame(input.points, input.input_count, run_.threads)),
         part_of_(input.points.size(), 0),
         failed_(static_cast<std::size_t>(run_.threads)),
         deferred_(static_cast<std::size_t>(run_.threads)),
@@ -132,6 +142,7 @@ class PartitionedRun {
     for (int i = 0; i < run_.threads; ++i) {
       run_.finish_thread(i, inserters_[static_cast<std::size_t>(i)]->dt);
     }
+    curve_.release();
     return run_.output(run_.finish());
   }
 
@@ -148,7 +159,7 @@ class PartitionedRun {
   // order[0, vertices_end) not pending. Returns the points postponed (given up) and, in a round's
   // pass, those deferred: once one part has tried all its points, the others stop and leave
   // the points they have not tried to the next pass, which spreads them over every thread,
-  // instead of idle threads waiting for the slowest (the arcs' work differs, and so do the cores'
+  // instead of idle threads waiting for the slowest (the parts' work differs, and so do the cores'
   // speeds on a shared machine). The passes after the rounds run to their end.
   std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t vertices_end,
                                   int parts, PassKind kind) {
@@ -157,7 +168,7 @@ class PartitionedRun {
     first_part_done_.store(false, std::memory_order_relaxed);
     const bool defers = kind == PassKind::Round && parts > 1;
     // A round's points are a sample of the input's, so the input's quantiles split them evenly;
-    // the points after the rounds crowd where earlier arcs met or where a part stopped.
+    // the points after the rounds crowd where earlier parts met or where a part stopped.
     cut(parts, vertices_end, kind == PassKind::Round ? nullptr : &pending);
     if (parts > 1) sort_along_pass_curve(pending);
     for (int i = 0; i < run_.threads; ++i) {
@@ -191,6 +202,7 @@ class PartitionedRun {
     record.points = pending.size();
     record.parts = static_cast<std::uint64_t>(parts);
     record.after_rounds = kind == PassKind::Final;
+    record.cut_axis = parts > 1 ? slab_axis_ : -1;
     record.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     record.setup_seconds = std::chrono::duration<double>(threads_start - start).count();
@@ -205,9 +217,9 @@ class PartitionedRun {
     return carried;
   }
 
-  // A pass with several parts inserts along its own curve: each part's points are then one run,
-  // so that a thread walks from each point to the next, not across the other parts between its
-  // runs of the walk mode's order. The keys also name the pending points' parts.
+  // A pass cut along a curve inserts along it: each part's points are then one run, so that a
+  // thread walks from each point to the next, not across the other parts between its runs of the
+  // walk mode's order (an arc is not convex). The keys also name the pending points' parts.
   void sort_along_pass_curve(std::vector<std::uint32_t>& pending) {
     std::vector<KeyedId> keyed = populated_vector<KeyedId>(pending.size(), run_.threads);
     std::vector<KeyedId> scratch = populated_vector<KeyedId>(pending.size(), run_.threads);
@@ -223,30 +235,55 @@ class PartitionedRun {
     for (std::size_t i = 0; i < keyed.size(); ++i) pending[i] = keyed[i].second;
   }
 
-  // Lays the pass's curve (moved_frame), cuts it and names the parts of the vertices so far (the
-  // pending points' are named as they are sorted). Cutting one
-  // curve at other places would not do: the arcs of one curve meet along the faces of its coarse
-  // cells whatever the cuts, and the points postponed there would be postponed again. The cuts
-  // are quantiles of a sample of `from`'s points, or of all the points when `from` is null: a
-  // BRIO round is a random sample of them, so its parts get as many points. The points after the
-  // rounds are not: the deferred ones lie together on the arc where a part stopped, and with
-  // the input's quantiles one part got most of them (uniform:1000000, 2 threads, the first pass
-  // after the rounds: imbalance up to 1.35 against at most 1.08 with theirs, and no more points
-  // postponed; performance-log.md, thirteenth session).
+  // Lays the pass's curve (moved by pass_shift; for two parts centred across next_slab_axis on
+  // the sampled points' median, in an orientation that fills the half below first, and cut in
+  // the middle: slabs), cuts it and names the parts of the vertices so far (pass() names the
+  // pending points' as it sorts them). Cutting one curve at other places would not do: the arcs
+  // of one curve meet along the faces of its coarse cells whatever the cuts, and the points
+  // postponed there would be postponed again. The points sampled are `from`'s, or all the points
+  // when `from` is null: a BRIO round is a random sample of them, so its parts get as many points.
+  // The points after the rounds are not: the deferred ones lie together where a part stopped,
+  // and with the input's quantiles one part got most of them (uniform:1000000, 2 threads, arcs,
+  // the first pass after the rounds: imbalance up to 1.35 against at most 1.08 with theirs, and
+  // no more points postponed; performance-log.md, thirteenth session).
   void cut(int parts, std::size_t vertices_end, const std::vector<std::uint32_t>* from) {
     if (parts == 1) {
       partition_.cut({}, 1);
       return;
     }
-    pass_frame_ = moved_frame(frame_, ++cuts_made_);
-    std::vector<std::uint64_t> sample;
+    std::vector<std::uint32_t> sampled;
     const std::size_t count = from ? from->size() : run_.input.input_count;
     const std::size_t step = std::max<std::size_t>(1, count / kCutSample);
     for (std::size_t i = 0; i < count; i += step) {
-      sample.push_back(pass_key(from ? (*from)[i] : static_cast<std::uint32_t>(i)));
+      sampled.push_back(from ? (*from)[i] : static_cast<std::uint32_t>(i));
     }
-    std::sort(sample.begin(), sample.end());
-    partition_.cut(sample, parts);
+    if (!curve_.has_cells()) {  // the first pass of several parts
+      const auto& points = run_.input.points;
+      curve_.find_cells(points, hilbert_frame(points, run_.input.input_count, run_.threads),
+                        run_.threads);
+    }
+    std::array<std::uint32_t, 3> shift = pass_shift(++curves_laid_);
+    slab_axis_ = parts == 2 && kSlabs ? next_slab_axis(sampled) : -1;
+    if (slab_axis_ >= 0) {
+      // The curve's cube is centred across the axis on the sampled points' median's cell, and
+      // the curve fills the half below it first: its two halves are the slabs, each one arc.
+      std::vector<double> c(sampled.size());
+      for (std::size_t i = 0; i < sampled.size(); ++i) c[i] = coordinate(sampled[i], slab_axis_);
+      const auto middle = c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2);
+      std::nth_element(c.begin(), middle, c.end());
+      const auto axis = static_cast<std::size_t>(slab_axis_);
+      shift[axis] = PassCurve::kInputCells - curve_.cell(*middle, slab_axis_);
+      curve_.move(shift, kHilbertStates.state_splitting(slab_axis_));
+      const std::uint64_t half = PassCurve::kHalfKey;
+      partition_.cut(std::span(&half, 1), 2);
+    } else {
+      curve_.move(shift);
+      std::vector<std::uint64_t> sample;
+      sample.reserve(sampled.size());
+      for (const std::uint32_t v : sampled) sample.push_back(pass_key(v));
+      std::sort(sample.begin(), sample.end());
+      partition_.cut(sample, parts);
+    }
     const std::vector<std::uint32_t>& order = run_.order;
     in_parallel_ranges(vertices_end, run_.threads,
                        [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -256,13 +293,48 @@ class PartitionedRun {
                        });
     for (const std::uint32_t v : run_.input.first) part_of_[v] = name_part(v);
   }
+  // The axis this pass's slabs are cut across, or -1 for arcs cut at any key. Never the axis of the
+  // pass before (whose postponed points lie at its planes, and a plane across the same axis at
+  // the same quantile would meet them again), and only an axis along which the sampled points
+  // spread at least half as far as along the widest (between their 5 % and 95 % quantiles: a far
+  // outlier does not count): a plane across a thin axis would cut through all of a flat input.
+  // The axes take turns; a long, thin input, with one such axis, has slabs every other pass and
+  // arcs cut at the quantiles between.
+  int next_slab_axis(const std::vector<std::uint32_t>& sampled) const {
+    std::array<double, 3> spread{};
+    if (sampled.size() >= 2) {
+      std::vector<double> c(sampled.size());
+      const auto low = static_cast<std::ptrdiff_t>(sampled.size() / 20);
+      const auto high = static_cast<std::ptrdiff_t>(sampled.size() - 1) - low;
+      for (std::size_t a = 0; a < 3; ++a) {
+        for (std::size_t i = 0; i < sampled.size(); ++i) {
+          c[i] = coordinate(sampled[i], static_cast<int>(a));
+        }
+        std::nth_element(c.begin(), c.begin() + low, c.end());
+        const double below = c[static_cast<std::size_t>(low)];
+        std::nth_element(c.begin(), c.begin() + high, c.end());
+        spread[a] = c[static_cast<std::size_t>(high)] - below;
+      }
+    }
+    const double widest = std::max({spread[0], spread[1], spread[2]});
+    int axis = -1;
+    for (int step = 1; step <= 3 && widest > 0; ++step) {
+      const int a = (slab_axis_ + step) % 3;
+      if (a != slab_axis_ && 2 * spread[static_cast<std::size_t>(a)] >= widest) {
+        axis = a;
+        break;
+      }
+    }
+    return axis;
+  }
   // Before a pass of several parts, each part on its own thread: the walk starts of the part at its
   // anchors, every kAnchorSpacing-th of its pending points (the first included), each a
   // tetrahedron with a vertex of the part (readable: no other thread writes it in the pass), the
   // nearest found to the anchor point. The walks to these points may go anywhere now, as nobody
   // writes. A part's first walk starts at its first anchor; a later anchor's start is taken after
-  // a give-up (insert_part), so that a walk stopped at the part's border (where the arc leaves
-  // the points' box and comes back elsewhere, say) does not leave every later walk of the pass
+  // a give-up (insert_part), so that a walk stopped at the part's border (where an arc leaves
+  // the points' box and comes back elsewhere, or a slab's points come near its plane, say) does
+  // not leave every later walk of the pass
   // starting there. An anchor with no readable tetrahedron near it (none in kStartSearch) has
   // none: the part's points after it wait for the next anchor or pass.
   void place_walk_starts(int parts, const std::vector<std::uint32_t>& pending) {
@@ -307,8 +379,11 @@ class PartitionedRun {
   std::uint8_t name_part(std::uint32_t v) const {
     return static_cast<std::uint8_t>(partition_.part_of(pass_key(v)));
   }
-  std::uint64_t pass_key(std::uint32_t v) const {
-    return hilbert_key_in(pass_frame_, run_.input.points[v], kPassKeyBits);
+  // Point v's position along the pass's curve.
+  std::uint64_t pass_key(std::uint32_t v) const { return curve_.key(v); }
+  double coordinate(std::uint32_t v, int axis) const {
+    const predicates::Point3& p = run_.input.points[v];
+    return axis == 0 ? p.x : axis == 1 ? p.y : p.z;
   }
 
   // Thread i's share of the pass: the pending points of its part, in the pass's order; after a
@@ -382,11 +457,12 @@ class PartitionedRun {
   }
 
   ParallelRun<K> run_;
-  HilbertFrame frame_;                 // the input's cube
-  HilbertFrame pass_frame_;            // the current pass's curve
+  PassCurve curve_;                    // the current pass's curve
   std::vector<std::uint8_t> part_of_;  // each vertex's part in the current pass
   CurvePartition partition_;
-  int cuts_made_ = 0;
+  int curves_laid_ = 0;  // passes of several parts so far
+  int slab_axis_ = -1;   // the slabs' axis (0 x, 1 y, 2 z) of this pass (or of the last of
+                         // several parts), or -1: arcs of a curve
   std::vector<std::unique_ptr<PartitionSync>> syncs_;
   std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
   std::vector<std::vector<std::uint32_t>> failed_;    // per thread, this pass

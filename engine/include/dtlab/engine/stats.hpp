@@ -63,6 +63,8 @@ struct ThreadStats {
 struct PartitionPass {
   std::uint64_t points = 0;         // tried in this pass
   std::uint64_t parts = 0;          // threads inserting (1: the pass runs on one thread)
+  int cut_axis = -1;                // several parts: the curve's halves, slabs across axis 0 (x),
+                                    // 1 (y) or 2 (z); -1: arcs cut at quantiles; one part: -1
   bool after_rounds = false;        // a pass after the last BRIO round (it never defers)
   std::uint64_t postponed = 0;      // given up: left for a later pass
   std::uint64_t deferred = 0;       // not tried: the first part to finish ended the pass, and

@@ -1,0 +1,90 @@
+#pragma once
+// The partitioned method's pass curves (partitioned.cpp): a pass lays a Hilbert curve of 2^10
+// cells a side, in one of the curve's orientations, through a cube twice the input's, its corner
+// moved back on each axis by a whole number of cells, at most 2^9 (512 cells span the input's
+// side). Every vertex's key is asked in every pass, so a key is made cheap: each point's cell on
+// the 2^9 grid over the input's cube is found once, with its coordinates' bits interleaved
+// (hilbert_curve.hpp, interleave); a pass's cell is that cell plus the pass's shift, added axis by
+// axis in the interleaved form (the bits of the other two axes set to one carry an axis's carries
+// over them, then are masked off), and its key is the automaton's on those octants. No point's
+// coordinates are read after the first pass. docs/design.md, "The partitioned method", has the
+// derivation.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dtlab/predicates/point.hpp"
+#include "location/insertion_order.hpp"
+#include "support/parallel_ranges.hpp"
+
+namespace dtlab::engine {
+
+class PassCurve {
+ public:
+  // The pass curve's grid: 2^10 cells a side over twice the input's cube.
+  static constexpr unsigned kBits = 10;
+  // The input's cube is 2^9 cells across; a shift is at most that on each axis, so a cell plus a
+  // shift stays below 2^10.
+  static constexpr std::uint32_t kInputCells = 1u << (kBits - 1);
+  // The first key of the curve's second half: its cells at 2^9 or above across the axis its
+  // orientation splits first (HilbertStates::state_splitting).
+  static constexpr std::uint64_t kHalfKey = std::uint64_t{4} << (3 * (kBits - 1));
+
+  // Finds the cells of points[0, points.size()) in `input` (the input's cube); `threads` share it.
+  void find_cells(const std::vector<predicates::Point3>& points, const HilbertFrame& input,
+                  int threads) {
+    input_ = input;
+    cells_.resize(points.size());
+    in_parallel_ranges(
+        points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+          for (std::size_t i = begin; i < end; ++i) {
+            const predicates::Point3& p = points[i];
+            cells_[i] =
+                static_cast<std::uint32_t>(interleave(cell(p.x, 0), cell(p.y, 1), cell(p.z, 2)));
+          }
+        });
+  }
+  [[nodiscard]] bool has_cells() const { return !cells_.empty(); }
+  // Frees the cells (before the output, whose buffers make the run's peak memory).
+  void release() { cells_ = {}; }
+
+  // Coordinate c's cell across `axis` (0 x, 1 y, 2 z) on the input's 2^9 grid (find_cells'
+  // cube); a coordinate outside the cube (none of the input's) takes the nearest cell.
+  [[nodiscard]] std::uint32_t cell(double c, int axis) const {
+    const double lo = axis == 0 ? input_.lo.x : axis == 1 ? input_.lo.y : input_.lo.z;
+    const double per_side = input_.extent > 0 ? kInputCells / input_.extent : 0.0;
+    return static_cast<std::uint32_t>(
+        std::clamp((c - lo) * per_side, 0.0, static_cast<double>(kInputCells - 1)));
+  }
+
+  // Moves the curve: its cube's corner goes back by shift[a] <= kInputCells cells on axis a, and
+  // the curve takes the orientation `root` (a HilbertStates state).
+  void move(const std::array<std::uint32_t, 3>& shift, int root = 0) {
+    shift_ = static_cast<std::uint32_t>(interleave(shift[0], shift[1], shift[2]));
+    root_ = root;
+  }
+
+  // Point v's key on the current curve.
+  [[nodiscard]] std::uint64_t key(std::uint32_t v) const {
+    return kHilbertStates.key_of_octants(add_cells(cells_[v], shift_), kBits, root_);
+  }
+
+  // Two interleaved cells added axis by axis (no axis may overflow kBits bits).
+  static constexpr std::uint32_t add_cells(std::uint32_t a, std::uint32_t b) {
+    std::uint32_t sum = 0;
+    for (const std::uint32_t axis : kAxisBits) sum |= ((a | ~axis) + (b & axis)) & axis;
+    return sum;
+  }
+
+ private:
+  // Each axis's bits in an interleaved code of kBits levels: z at 3 b, y at 3 b + 1, x at 3 b + 2.
+  static constexpr std::array<std::uint32_t, 3> kAxisBits = {0x09249249u, 0x12492492u, 0x24924924u};
+
+  HilbertFrame input_{};              // the input's cube
+  std::vector<std::uint32_t> cells_;  // each point's cell on the input's 2^9 grid, interleaved
+  std::uint32_t shift_ = 0;           // the current pass's shift, interleaved
+  int root_ = 0;                      // the current curve's orientation
+};
+
+}  // namespace dtlab::engine
