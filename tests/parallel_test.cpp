@@ -1037,14 +1037,19 @@ TEST(ParallelMethods, PartitionedDefersWhatTheSlowerPartsHaveNotTried) {
 // The partitioned method's cuts: two parts are slabs across an axis, never the axis of the pass
 // of several parts before, nor one along which the points spread less than half as far as along
 // the widest (a flat input is not cut across its thin side); a long, thin input, with one such
-// axis, has slabs every other pass and arcs of a curve between; more parts are arcs. The mesh is
-// the unique one whatever the cuts.
+// axis, has slabs every other pass and arcs of a curve between; more parts are arcs. The slabs
+// halve the pass's points at their median (on points crowded to one corner, where a plane at the
+// box's middle would not). The mesh is the unique one whatever the cuts.
 TEST(ParallelMethods, PartitionedCutsTwoPartsIntoSlabsAcrossTurningAxes) {
-  auto box = [](double x, double y, double z) {
+  auto box = [](double x, double y, double z, bool crowded = false) {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::vector<predicates::Point3> points(3000);
-    for (auto& p : points) p = {x * unit(rng), y * unit(rng), z * unit(rng)};
+    std::vector<predicates::Point3> points(crowded ? 8000 : 3000);
+    auto coordinate = [&](double side) {
+      const double u = unit(rng);
+      return side * (crowded ? u * u : u);  // crowded: the median at a quarter of the side
+    };
+    for (auto& p : points) p = {coordinate(x), coordinate(y), coordinate(z)};
     return points;
   };
   struct Case {
@@ -1053,6 +1058,7 @@ TEST(ParallelMethods, PartitionedCutsTwoPartsIntoSlabsAcrossTurningAxes) {
     int threads;
   };
   const Case cases[] = {{"cube", box(1, 1, 1), 2},
+                        {"crowded cube", box(1, 1, 1, true), 2},
                         {"flat", box(1, 1, 0.01), 2},
                         {"needle", box(1, 0.01, 0.01), 2},
                         {"cube, 4 threads", box(1, 1, 1), 4}};
@@ -1076,6 +1082,12 @@ TEST(ParallelMethods, PartitionedCutsTwoPartsIntoSlabsAcrossTurningAxes) {
       }
       cuts.push_back(pass.cut_axis);
       if (!pass.after_rounds) round_cuts.push_back(pass.cut_axis);
+      if (pass.cut_axis >= 0 && !pass.after_rounds && pass.points >= 1000) {
+        EXPECT_LE(static_cast<double>(pass.most_points), 0.6 * static_cast<double>(pass.points))
+            << c.name << ": slabs across axis " << pass.cut_axis;
+      }
+      EXPECT_GE(pass.most_points * pass.parts, pass.points) << c.name;
+      EXPECT_LE(pass.most_points, pass.points) << c.name;
       if (pass.parts > 2) {
         EXPECT_EQ(pass.cut_axis, -1) << c.name << ": " << pass.parts << " parts are arcs";
       }
@@ -1091,7 +1103,7 @@ TEST(ParallelMethods, PartitionedCutsTwoPartsIntoSlabsAcrossTurningAxes) {
     const std::string name = c.name;
     for (std::size_t i = 0; i < round_cuts.size(); ++i) {
       int expected_axis = -1;
-      if (name == "cube") expected_axis = static_cast<int>(i % 3);
+      if (name == "cube" || name == "crowded cube") expected_axis = static_cast<int>(i % 3);
       if (name == "flat") expected_axis = static_cast<int>(i % 2);
       if (name == "needle") expected_axis = i % 2 == 0 ? 0 : -1;
       EXPECT_EQ(round_cuts[i], expected_axis) << c.name << ": pass " << i;

@@ -31,10 +31,12 @@ TEST(PassCurve, InterleavedAdditionAddsEachAxis) {
     ASSERT_EQ(sum, engine::interleave(a[0] + b[0], a[1] + b[1], a[2] + b[2]))
         << a[0] << " " << a[1] << " " << a[2] << " + " << b[0] << " " << b[1] << " " << b[2];
   }
-  // The largest sums: every bit of every axis carries.
+  // The largest sums: the last cell and the largest shift (a slab's, 2^9), every bit carrying.
   const std::uint32_t top = PassCurve::kInputCells - 1;
-  const auto all = static_cast<std::uint32_t>(engine::interleave(top, top, top));
-  EXPECT_EQ(PassCurve::add_cells(all, all), engine::interleave(2 * top, 2 * top, 2 * top));
+  const std::uint32_t most = PassCurve::kInputCells;
+  EXPECT_EQ(PassCurve::add_cells(static_cast<std::uint32_t>(engine::interleave(top, top, top)),
+                                 static_cast<std::uint32_t>(engine::interleave(most, most, most))),
+            engine::interleave(top + most, top + most, top + most));
 }
 
 TEST(PassCurve, KeyIsTheHilbertKeyOfTheShiftedCell) {
@@ -57,14 +59,23 @@ TEST(PassCurve, KeyIsTheHilbertKeyOfTheShiftedCell) {
         std::clamp(scaled, 0.0, static_cast<double>(PassCurve::kInputCells - 1)));
   };
   for (const std::array<std::uint32_t, 3> shift :
-       {std::array<std::uint32_t, 3>{0, 0, 0}, {511, 511, 511}, {256, 17, 400}}) {
-    curve.move(shift);
-    for (std::size_t v = 0; v < points.size(); ++v) {
-      const predicates::Point3& p = points[v];
-      const std::uint64_t expected =
-          engine::hilbert_key(cell(p.x, frame.lo.x) + shift[0], cell(p.y, frame.lo.y) + shift[1],
-                              cell(p.z, frame.lo.z) + shift[2], PassCurve::kBits);
-      ASSERT_EQ(curve.key(static_cast<std::uint32_t>(v)), expected) << "point " << v;
+       {std::array<std::uint32_t, 3>{0, 0, 0}, {511, 511, 511}, {256, 17, 400}, {512, 3, 512}}) {
+    // The definition's orientation (hilbert_key's), and another.
+    for (const int root : {0, engine::kHilbertStates.state_splitting(1)}) {
+      curve.move(shift, root);
+      for (std::size_t v = 0; v < points.size(); ++v) {
+        const predicates::Point3& p = points[v];
+        const std::uint32_t x = cell(p.x, frame.lo.x) + shift[0];
+        const std::uint32_t y = cell(p.y, frame.lo.y) + shift[1];
+        const std::uint32_t z = cell(p.z, frame.lo.z) + shift[2];
+        const std::uint64_t key = curve.key(static_cast<std::uint32_t>(v));
+        ASSERT_EQ(key, engine::kHilbertStates.key_of_octants(engine::interleave(x, y, z),
+                                                             PassCurve::kBits, root))
+            << "point " << v << ", orientation " << root;
+        if (root == 0) {
+          ASSERT_EQ(key, engine::hilbert_key(x, y, z, PassCurve::kBits)) << "point " << v;
+        }
+      }
     }
   }
   // The corners' and the outsider's cells, as the clamp gives them.
@@ -120,6 +131,51 @@ TEST(PassCurve, EachAxisHasAnOrientationWhoseHalvesAreSlabs) {
           << axis;
     }
   }
+}
+
+// lay_halves: the curve's halves are the two sides of the face given, across the axis given,
+// whatever the other axes' shifts, for every face from the grid's first to its last; the nearest
+// face; the cells of coordinates on a cube too small for the reciprocal of its side.
+TEST(PassCurve, HalvesAreTheSidesOfTheFaceGiven) {
+  const engine::HilbertFrame frame{{0.0, 0.0, 0.0}, 1.0};
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<predicates::Point3> points(20000);
+  for (auto& p : points) p = {unit(rng), unit(rng), unit(rng)};
+  PassCurve curve;
+  curve.find_cells(points, frame, 2);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const std::uint32_t face : {0u, 1u, 200u, 511u, 512u}) {
+      curve.lay_halves({301, 77, 5}, axis, face);
+      std::size_t below = 0;
+      for (std::size_t v = 0; v < points.size(); ++v) {
+        const predicates::Point3& p = points[v];
+        const double c = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+        const bool lower = curve.cell(c, axis) < face;
+        below += lower ? 1 : 0;
+        ASSERT_EQ(curve.key(static_cast<std::uint32_t>(v)) < PassCurve::kHalfKey, lower)
+            << "axis " << axis << ", face " << face << ", point " << v;
+      }
+      if (face == 0) EXPECT_EQ(below, 0u);
+      if (face == 512) EXPECT_EQ(below, points.size());
+      if (face == 200) EXPECT_NEAR(static_cast<double>(below) / points.size(), 200.0 / 512, 0.02);
+    }
+  }
+  EXPECT_EQ(curve.nearest_face(0.0, 0), 0u);
+  EXPECT_EQ(curve.nearest_face(0.5, 1), 256u);
+  EXPECT_EQ(curve.nearest_face(0.5 + 0.4 / 512, 2), 256u);
+  EXPECT_EQ(curve.nearest_face(0.5 + 0.6 / 512, 2), 257u);
+  EXPECT_EQ(curve.nearest_face(1.0, 0), 512u);
+  EXPECT_EQ(curve.nearest_face(7.0, 0), 512u);
+  EXPECT_EQ(curve.nearest_face(-7.0, 0), 0u);
+  // A cube whose side's reciprocal overflows: the cells are still on the grid, in order.
+  const double tiny = 1e-310;
+  PassCurve small;
+  small.find_cells({{0, 0, 0}, {tiny, tiny, tiny}}, {{0, 0, 0}, tiny}, 1);
+  EXPECT_EQ(small.cell(0.0, 0), 0u);
+  EXPECT_EQ(small.cell(tiny / 2, 1), 256u);
+  EXPECT_EQ(small.cell(tiny, 2), 511u);
+  EXPECT_EQ(small.nearest_face(tiny, 2), 512u);
 }
 
 }  // namespace

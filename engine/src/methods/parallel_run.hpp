@@ -263,9 +263,11 @@ class ParallelRun {
 // One thread's inserter on the run's mesh, with the thread's side of the epochs where the
 // location mode reuses slots and other threads may read them (not for a policy that confines its
 // reads: insertion/sync.hpp). `epoch_slot`: the thread's announcement in run.epochs; `stats`:
-// where its inserter counts.
+// where its inserter counts. A cache line to itself (its walk start and counters are written at
+// every insertion), as LocalUndoLog: the partitioned method allocates the threads' one after the
+// other.
 template <class K, class Sync>
-struct ThreadInserter {
+struct alignas(64) ThreadInserter {
   ThreadInserter(ParallelRun<K>& run, int epoch_slot, TriangulationStats& stats, Sync& sync)
       : reclaimer(run.epochs, epoch_slot),
         dt(run.mesh, run.options, stats, sync,

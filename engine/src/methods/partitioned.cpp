@@ -3,15 +3,14 @@
 // moved against the points and cuts it into one arc a thread (CurvePartition): two arcs are the
 // curve's halves, laid to be slabs on either side of a plane across one axis, the axes taking
 // turns; more are cut at the keys' quantiles. A thread inserts the pass's points of its arc along
-// the curve, and an insertion that
-// would change a tetrahedron with a vertex of another part, or whose walk would leave the
-// tetrahedra no other thread writes, is given up (PartitionSync) and waits for the next pass,
-// whose cuts lie elsewhere. So a thread reads nothing another writes: no epochs, and its dead
-// slots are reused at once. The passes follow the BRIO rounds of the walk mode's order; a round's
-// pass ends when its first part is done, and the points the others have not tried wait for the
-// next pass. What is left after the last round goes in by further passes, the last ones on one
-// thread. Walk mode only: the passes change the insertion order, which the DAG's expected cost
-// rests on.
+// the curve, and an insertion that would change a tetrahedron with a vertex of another part, or
+// whose walk would leave the tetrahedra no other thread writes, is given up (PartitionSync) and
+// waits for the next pass, whose cuts lie elsewhere. So a thread reads nothing another writes: no
+// epochs, and its dead slots are reused at once. The passes follow the BRIO rounds of the walk
+// mode's order; a round's pass ends when its first part is done, and the points the others have
+// not tried wait for the next pass. What is left after the last round goes in by further passes,
+// the last ones on one thread. Walk mode only: the passes change the insertion order, which the
+// DAG's expected cost rests on.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -46,6 +45,8 @@ constexpr std::size_t kCutSample = 4096;
 // halves are the slabs (next_slab_axis, cut), so each part is still one arc. More parts are arcs
 // cut at the keys' quantiles: P slabs would meet at P - 1 planes.
 constexpr bool kSlabs = true;
+// The least spread of the sampled points across a slabs' axis, in cells of the pass curve's grid.
+constexpr double kSlabCells = 8;
 // Tetrahedra looked at around an anchor point for a readable start (place_walk_starts).
 constexpr std::size_t kStartSearch = 4096;
 // A part's anchors: every this many of its pending points in a pass (place_walk_starts).
@@ -203,6 +204,7 @@ class PartitionedRun {
     record.parts = static_cast<std::uint64_t>(parts);
     record.after_rounds = kind == PassKind::Final;
     record.cut_axis = parts > 1 ? slab_axis_ : -1;
+    record.most_points = parts > 1 ? most_points_ : pending.size();
     record.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     record.setup_seconds = std::chrono::duration<double>(threads_start - start).count();
@@ -265,17 +267,15 @@ class PartitionedRun {
     std::array<std::uint32_t, 3> shift = pass_shift(++curves_laid_);
     slab_axis_ = parts == 2 && kSlabs ? next_slab_axis(sampled) : -1;
     if (slab_axis_ >= 0) {
-      // The curve's cube is centred across the axis on the sampled points' median's cell, and
-      // the curve fills the half below it first: its two halves are the slabs, each one arc.
+      last_slab_axis_ = slab_axis_;
+      // The curve's halves are the two sides of the grid's face nearest the sampled points'
+      // median across the axis: slabs, each one arc.
       std::vector<double> c(sampled.size());
       for (std::size_t i = 0; i < sampled.size(); ++i) c[i] = coordinate(sampled[i], slab_axis_);
       const auto middle = c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2);
       std::nth_element(c.begin(), middle, c.end());
-      const auto axis = static_cast<std::size_t>(slab_axis_);
-      shift[axis] = PassCurve::kInputCells - curve_.cell(*middle, slab_axis_);
-      curve_.move(shift, kHilbertStates.state_splitting(slab_axis_));
-      const std::uint64_t half = PassCurve::kHalfKey;
-      partition_.cut(std::span(&half, 1), 2);
+      curve_.lay_halves(shift, slab_axis_, curve_.nearest_face(*middle, slab_axis_));
+      partition_.cut_at(PassCurve::kHalfKey);
     } else {
       curve_.move(shift);
       std::vector<std::uint64_t> sample;
@@ -293,13 +293,14 @@ class PartitionedRun {
                        });
     for (const std::uint32_t v : run_.input.first) part_of_[v] = name_part(v);
   }
-  // The axis this pass's slabs are cut across, or -1 for arcs cut at any key. Never the axis of the
-  // pass before (whose postponed points lie at its planes, and a plane across the same axis at
-  // the same quantile would meet them again), and only an axis along which the sampled points
-  // spread at least half as far as along the widest (between their 5 % and 95 % quantiles: a far
-  // outlier does not count): a plane across a thin axis would cut through all of a flat input.
-  // The axes take turns; a long, thin input, with one such axis, has slabs every other pass and
-  // arcs cut at the quantiles between.
+  // The axis this pass's slabs are cut across, or -1 for arcs cut at the keys' quantiles. Never
+  // the axis of the pass before (whose postponed points lie at its plane, and a plane across the
+  // same axis at the same quantile would meet them again), and only an axis along which the
+  // sampled points spread at least half as far as along the widest and over kSlabCells cells of
+  // the grid (between their 5 % and 95 % quantiles: a far outlier does not count): a plane across
+  // a thin axis would cut through all of a flat input, and one inside a single layer of cells
+  // would not halve it. The axes take turns from the last slabs' axis; a long, thin input, with
+  // one such axis, has slabs every other pass and arcs cut at the quantiles between.
   int next_slab_axis(const std::vector<std::uint32_t>& sampled) const {
     std::array<double, 3> spread{};
     if (sampled.size() >= 2) {
@@ -317,15 +318,13 @@ class PartitionedRun {
       }
     }
     const double widest = std::max({spread[0], spread[1], spread[2]});
-    int axis = -1;
-    for (int step = 1; step <= 3 && widest > 0; ++step) {
-      const int a = (slab_axis_ + step) % 3;
-      if (a != slab_axis_ && 2 * spread[static_cast<std::size_t>(a)] >= widest) {
-        axis = a;
-        break;
-      }
+    const int turn_from = slab_axis_ >= 0 ? slab_axis_ : last_slab_axis_;
+    for (int step = 1; step <= 3; ++step) {
+      const int a = (turn_from + step) % 3;
+      const double along = spread[static_cast<std::size_t>(a)];
+      if (a != slab_axis_ && 2 * along >= widest && curve_.cells_in(along) >= kSlabCells) return a;
     }
-    return axis;
+    return -1;
   }
   // Before a pass of several parts, each part on its own thread: the walk starts of the part at its
   // anchors, every kAnchorSpacing-th of its pending points (the first included), each a
@@ -344,6 +343,7 @@ class PartitionedRun {
       const std::uint8_t part = part_of_[pending[position]];
       if (counted[part]++ % kAnchorSpacing == 0) anchors_[part].push_back({position, kNoTet});
     }
+    most_points_ = *std::max_element(counted.begin(), counted.end());
     // Each part's walks on its own thread: they only read, and nobody writes until they end.
     run_.on_threads([&](int i) {
       const auto index = static_cast<std::size_t>(i);
@@ -460,9 +460,11 @@ class PartitionedRun {
   PassCurve curve_;                    // the current pass's curve
   std::vector<std::uint8_t> part_of_;  // each vertex's part in the current pass
   CurvePartition partition_;
-  int curves_laid_ = 0;  // passes of several parts so far
-  int slab_axis_ = -1;   // the slabs' axis (0 x, 1 y, 2 z) of this pass (or of the last of
-                         // several parts), or -1: arcs of a curve
+  int curves_laid_ = 0;          // passes of several parts so far
+  int slab_axis_ = -1;           // the slabs' axis (0 x, 1 y, 2 z) of this pass (or of the last of
+                                 // several parts), or -1: arcs cut at the keys' quantiles
+  int last_slab_axis_ = -1;      // of the last pass cut into slabs
+  std::size_t most_points_ = 0;  // this pass: the most pending points a part has
   std::vector<std::unique_ptr<PartitionSync>> syncs_;
   std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
   std::vector<std::vector<std::uint32_t>> failed_;    // per thread, this pass

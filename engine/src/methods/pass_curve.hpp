@@ -6,11 +6,12 @@
 // the 2^9 grid over the input's cube is found once, with its coordinates' bits interleaved
 // (hilbert_curve.hpp, interleave); a pass's cell is that cell plus the pass's shift, added axis by
 // axis in the interleaved form (the bits of the other two axes set to one carry an axis's carries
-// over them, then are masked off), and its key is the automaton's on those octants. No point's
-// coordinates are read after the first pass. docs/design.md, "The partitioned method", has the
-// derivation.
+// over them, then are masked off), and its key is the automaton's on those octants: no point's
+// coordinates are read for a key. docs/design.md, "The partitioned method", has the derivation.
 #include <algorithm>
 #include <array>
+#include <cassert>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,10 @@
 #include "support/parallel_ranges.hpp"
 
 namespace dtlab::engine {
+
+// Every axis has an orientation of the curve that splits across it first (lay_halves).
+static_assert(kHilbertStates.state_splitting(0) >= 0 && kHilbertStates.state_splitting(1) >= 0 &&
+              kHilbertStates.state_splitting(2) >= 0);
 
 class PassCurve {
  public:
@@ -32,6 +37,7 @@ class PassCurve {
   static constexpr std::uint64_t kHalfKey = std::uint64_t{4} << (3 * (kBits - 1));
 
   // Finds the cells of points[0, points.size()) in `input` (the input's cube); `threads` share it.
+  // The cells are found from the input's bounding cube, so every point's is on the grid.
   void find_cells(const std::vector<predicates::Point3>& points, const HilbertFrame& input,
                   int threads) {
     input_ = input;
@@ -50,19 +56,35 @@ class PassCurve {
   void release() { cells_ = {}; }
 
   // Coordinate c's cell across `axis` (0 x, 1 y, 2 z) on the input's 2^9 grid (find_cells'
-  // cube); a coordinate outside the cube (none of the input's) takes the nearest cell.
+  // cube); a coordinate outside the cube takes the nearest cell.
   [[nodiscard]] std::uint32_t cell(double c, int axis) const {
-    const double lo = axis == 0 ? input_.lo.x : axis == 1 ? input_.lo.y : input_.lo.z;
-    const double per_side = input_.extent > 0 ? kInputCells / input_.extent : 0.0;
-    return static_cast<std::uint32_t>(
-        std::clamp((c - lo) * per_side, 0.0, static_cast<double>(kInputCells - 1)));
+    return on_grid(std::floor(in_cells(c, axis)), kInputCells - 1);
+  }
+  // The face of the input's grid across `axis` nearest coordinate c: 0 .. 2^9.
+  [[nodiscard]] std::uint32_t nearest_face(double c, int axis) const {
+    return on_grid(std::round(in_cells(c, axis)), kInputCells);
+  }
+  // A length in the grid's cells.
+  [[nodiscard]] double cells_in(double length) const {
+    return input_.extent > 0 ? length / input_.extent * kInputCells : 0.0;
   }
 
   // Moves the curve: its cube's corner goes back by shift[a] <= kInputCells cells on axis a, and
   // the curve takes the orientation `root` (a HilbertStates state).
   void move(const std::array<std::uint32_t, 3>& shift, int root = 0) {
+    assert(shift[0] <= kInputCells && shift[1] <= kInputCells && shift[2] <= kInputCells);
+    assert(root >= 0 && root < kHilbertStates.states());
     shift_ = static_cast<std::uint32_t>(interleave(shift[0], shift[1], shift[2]));
     root_ = root;
+  }
+  // Lays the curve so that its two halves are the two sides of the grid's face `face` (0 .. 2^9)
+  // across `axis`: the cube centred there across the axis (moved back by 2^9 - face cells; on the
+  // other axes by `shift`), in an orientation that fills the half below first. Then a point's
+  // key is below kHalfKey exactly when its cell across the axis is below `face`.
+  void lay_halves(std::array<std::uint32_t, 3> shift, int axis, std::uint32_t face) {
+    assert(face <= kInputCells);
+    shift[static_cast<std::size_t>(axis)] = kInputCells - face;
+    move(shift, kHilbertStates.state_splitting(axis));
   }
 
   // Point v's key on the current curve.
@@ -80,6 +102,19 @@ class PassCurve {
  private:
   // Each axis's bits in an interleaved code of kBits levels: z at 3 b, y at 3 b + 1, x at 3 b + 2.
   static constexpr std::array<std::uint32_t, 3> kAxisBits = {0x09249249u, 0x12492492u, 0x24924924u};
+
+  // c's distance from the cube's lower face across `axis`, in cells (divided first: a tiny
+  // extent's reciprocal would overflow).
+  [[nodiscard]] double in_cells(double c, int axis) const {
+    const double lo = axis == 0 ? input_.lo.x : axis == 1 ? input_.lo.y : input_.lo.z;
+    return input_.extent > 0 ? (c - lo) / input_.extent * kInputCells : 0.0;
+  }
+
+  // x as a whole number in [0, most] (NaN, from coordinates too far apart to subtract: 0).
+  static std::uint32_t on_grid(double x, std::uint32_t most) {
+    if (!(x > 0)) return 0;
+    return static_cast<std::uint32_t>(std::min(x, static_cast<double>(most)));
+  }
 
   HilbertFrame input_{};              // the input's cube
   std::vector<std::uint32_t> cells_;  // each point's cell on the input's 2^9 grid, interleaved

@@ -65,6 +65,7 @@ struct PartitionPass {
   std::uint64_t parts = 0;          // threads inserting (1: the pass runs on one thread)
   int cut_axis = -1;                // several parts: the curve's halves, slabs across axis 0 (x),
                                     // 1 (y) or 2 (z); -1: arcs cut at quantiles; one part: -1
+  std::uint64_t most_points = 0;    // the most of the pass's points one part had
   bool after_rounds = false;        // a pass after the last BRIO round (it never defers)
   std::uint64_t postponed = 0;      // given up: left for a later pass
   std::uint64_t deferred = 0;       // not tried: the first part to finish ended the pass, and
