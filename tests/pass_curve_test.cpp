@@ -150,15 +150,21 @@ TEST(PassCurve, HalvesAreTheSidesOfTheFaceGiven) {
       std::size_t below = 0;
       for (std::size_t v = 0; v < points.size(); ++v) {
         const predicates::Point3& p = points[v];
-        const double c = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+        const double c = predicates::coordinate(p, axis);
         const bool lower = curve.cell(c, axis) < face;
         below += lower ? 1 : 0;
         ASSERT_EQ(curve.key(static_cast<std::uint32_t>(v)) < PassCurve::kHalfKey, lower)
             << "axis " << axis << ", face " << face << ", point " << v;
       }
-      if (face == 0) EXPECT_EQ(below, 0u);
-      if (face == 512) EXPECT_EQ(below, points.size());
-      if (face == 200) EXPECT_NEAR(static_cast<double>(below) / points.size(), 200.0 / 512, 0.02);
+      if (face == 0) {
+        EXPECT_EQ(below, 0u);
+      }
+      if (face == 512) {
+        EXPECT_EQ(below, points.size());
+      }
+      if (face == 200) {
+        EXPECT_NEAR(static_cast<double>(below) / points.size(), 200.0 / 512, 0.02);
+      }
     }
   }
   EXPECT_EQ(curve.nearest_face(0.0, 0), 0u);

@@ -382,8 +382,7 @@ class PartitionedRun {
   // Point v's position along the pass's curve.
   std::uint64_t pass_key(std::uint32_t v) const { return curve_.key(v); }
   double coordinate(std::uint32_t v, int axis) const {
-    const predicates::Point3& p = run_.input.points[v];
-    return axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+    return predicates::coordinate(run_.input.points[v], axis);
   }
 
   // Thread i's share of the pass: the pending points of its part, in the pass's order; after a

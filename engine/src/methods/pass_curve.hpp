@@ -106,7 +106,7 @@ class PassCurve {
   // c's distance from the cube's lower face across `axis`, in cells (divided first: a tiny
   // extent's reciprocal would overflow).
   [[nodiscard]] double in_cells(double c, int axis) const {
-    const double lo = axis == 0 ? input_.lo.x : axis == 1 ? input_.lo.y : input_.lo.z;
+    const double lo = predicates::coordinate(input_.lo, axis);
     return input_.extent > 0 ? (c - lo) / input_.extent * kInputCells : 0.0;
   }
 
