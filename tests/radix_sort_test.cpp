@@ -1,8 +1,9 @@
 // A test of the engine's internals: it includes headers from engine/src (dtlab_internal_test).
 // The engine's stable radix sort of (key, id) pairs: the order of std::stable_sort by key, on one
 // thread and on several, with keys that share digits (skipped passes), many equal keys (stability),
-// sizes around the split's minimum, and both ways of sorting a large array (split by the top
-// digit, or every digit over the whole array when the split would crowd into one part).
+// sizes around the split's minimum, ranges small enough for insertion, and both ways of sorting a
+// large array (split by the top digit, or every digit over the whole array when the split would
+// crowd into one part).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -59,6 +60,27 @@ TEST(StableSortByKey, FullWidthRandomKeysOnAnyThreadCount) {
     std::vector<KeyedId> scratch(items.size());
     engine::stable_sort_by_key(sorted.data(), scratch.data(), sorted.size(), threads);
     EXPECT_EQ(sorted, expected) << threads;
+  }
+}
+
+// The smallest ranges are sorted by insertion: a few items alone, and the parts of a split by a
+// top digit that takes 256 values over barely two threads' minimum (about 32 items a part), each
+// with many equal keys, so that an unstable insertion would show.
+TEST(StableSortByKey, SmallRangesAndTinyPartsOfASplitKeepEqualKeysInOrder) {
+  std::mt19937_64 random(5);
+  for (const std::size_t n : {std::size_t{2}, std::size_t{31}, std::size_t{32}, std::size_t{33},
+                              2 * engine::kParallelMinimum + 5}) {
+    std::vector<KeyedId> items(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      items[i] = {((random() % 256) << 16) | (random() % 3), static_cast<std::uint32_t>(i)};
+    }
+    const std::vector<KeyedId> expected = sorted_by_std(items);
+    for (const int threads : {1, 2, 3}) {
+      std::vector<KeyedId> sorted = items;
+      std::vector<KeyedId> scratch(n);
+      engine::stable_sort_by_key(sorted.data(), scratch.data(), n, threads);
+      EXPECT_EQ(sorted, expected) << "n " << n << ", threads " << threads;
+    }
   }
 }
 

@@ -58,7 +58,7 @@ class PassCurve {
   // Coordinate c's cell across `axis` (0 x, 1 y, 2 z) on the input's 2^9 grid (find_cells'
   // cube); a coordinate outside the cube takes the nearest cell.
   [[nodiscard]] std::uint32_t cell(double c, int axis) const {
-    return on_grid(std::floor(in_cells(c, axis)), kInputCells - 1);
+    return on_grid(in_cells(c, axis), kInputCells - 1);  // on_grid truncates: the floor
   }
   // The face of the input's grid across `axis` nearest coordinate c: 0 .. 2^9.
   [[nodiscard]] std::uint32_t nearest_face(double c, int axis) const {
@@ -76,6 +76,7 @@ class PassCurve {
     assert(root >= 0 && root < kHilbertStates.states());
     shift_ = static_cast<std::uint32_t>(interleave(shift[0], shift[1], shift[2]));
     root_ = root;
+    halves_axis_ = -1;
   }
   // Lays the curve so that its two halves are the two sides of the grid's face `face` (0 .. 2^9)
   // across `axis`: the cube centred there across the axis (moved back by 2^9 - face cells; on the
@@ -85,6 +86,18 @@ class PassCurve {
     assert(face <= kInputCells);
     shift[static_cast<std::size_t>(axis)] = kInputCells - face;
     move(shift, kHilbertStates.state_splitting(axis));
+    halves_axis_ = axis;
+  }
+
+  // After lay_halves: whether point v's key is kHalfKey or above, known from its cell across the
+  // halves' axis alone: that cell plus 2^9 - face reaches 2^9, the axis's top bit, exactly when
+  // the cell is at the face or above. One addition instead of the key's five look-ups, for
+  // naming the part of every vertex in a pass.
+  [[nodiscard]] bool in_second_half(std::uint32_t v) const {
+    assert(halves_axis_ >= 0);
+    const std::uint32_t axis_bits = kAxisBits[static_cast<std::size_t>(2 - halves_axis_)];
+    const std::uint32_t top_bit = axis_bits & (std::uint32_t{7} << (3 * (kBits - 1)));
+    return (((cells_[v] | ~axis_bits) + (shift_ & axis_bits)) & top_bit) != 0;
   }
 
   // Point v's key on the current curve.
@@ -110,7 +123,8 @@ class PassCurve {
     return input_.extent > 0 ? (c - lo) / input_.extent * kInputCells : 0.0;
   }
 
-  // x as a whole number in [0, most] (NaN, from coordinates too far apart to subtract: 0).
+  // x as a whole number in [0, most], truncated (NaN, from coordinates too far apart to
+  // subtract: 0).
   static std::uint32_t on_grid(double x, std::uint32_t most) {
     if (!(x > 0)) return 0;
     return static_cast<std::uint32_t>(std::min(x, static_cast<double>(most)));
@@ -120,6 +134,7 @@ class PassCurve {
   std::vector<std::uint32_t> cells_;  // each point's cell on the input's 2^9 grid, interleaved
   std::uint32_t shift_ = 0;           // the current pass's shift, interleaved
   int root_ = 0;                      // the current curve's orientation
+  int halves_axis_ = -1;              // the axis its halves lie across (lay_halves), or -1
 };
 
 }  // namespace dtlab::engine

@@ -15,11 +15,16 @@ namespace {
 
 constexpr int kDigits = 8;
 // A range of at most this many items is sorted by its lower digits least significant first: its
-// items and their scratch (128 KiB) stay in the core's L2 cache across the passes. A larger range
-// is first split by its most significant varying digit, so that every later pass works on such
-// a small range: a least-significant-first pass over the whole array scatters to 256 places in
-// tens of megabytes, eight times for a Hilbert key.
-constexpr std::size_t kInCache = 4096;
+// items and their scratch (512 KiB, this machine's L2 cache a core) stay near the core across the
+// passes. A larger range is first split by its most significant varying digit, so that every
+// later pass works on such a small range: a least-significant-first pass over the whole array
+// scatters to 256 places in tens of megabytes, eight times for a Hilbert key. (At 4096 items, a
+// pass curve's 30-bit keys were split twice, the second time into parts of a few dozen items:
+// 500,000 of them took 11.0 ms on 2 threads, 5.8 ms at 16384; performance-log.md, fifteenth
+// session.)
+constexpr std::size_t kInCache = 16384;
+// A range of at most this many items is sorted by insertion.
+constexpr std::size_t kInsertionSort = 32;
 
 std::size_t digit_of(const KeyedId& item, int d) {
   return static_cast<std::size_t>((item.first >> (8 * d)) & 0xFF);
@@ -40,11 +45,28 @@ void counts_to_starts(std::array<std::size_t, 256>& count) {
   }
 }
 
+// Sorts a[0, n) by key, stably, by insertion: for the few items a split's part may hold, where
+// a counting pass's 256 counters cost more than the items.
+KeyedId* insertion_sort(KeyedId* a, std::size_t n) {
+  for (std::size_t i = 1; i < n; ++i) {
+    const KeyedId item = a[i];
+    std::size_t j = i;
+    for (; j > 0 && a[j - 1].first > item.first; --j) a[j] = a[j - 1];
+    a[j] = item;
+  }
+  return a;
+}
+
 // Sorts a[0, n) by digits [0, top) of the keys, stably, least significant first, passing between
 // a and b (one counting pass serves every digit; a digit the same in all n keys is skipped).
 // Returns a or b, whichever holds the result.
 KeyedId* sort_low_digits(KeyedId* a, KeyedId* b, std::size_t n, int top) {
-  std::array<std::array<std::size_t, 256>, kDigits> count{};
+  if (n <= kInsertionSort) return insertion_sort(a, n);
+  // Only the counters of the digits sorted by are cleared: a split's part, sorted by its two
+  // lowest digits, cleared all eight (16 KiB) for a few dozen items (2 threads sorting 500,000
+  // 30-bit keys took longer than one).
+  std::array<std::array<std::size_t, 256>, kDigits> count;  // NOLINT: rows [0, top) cleared below
+  for (int d = 0; d < top; ++d) count[static_cast<std::size_t>(d)].fill(0);
   for (std::size_t i = 0; i < n; ++i) {
     for (int d = 0; d < top; ++d) ++count[static_cast<std::size_t>(d)][digit_of(a[i], d)];
   }
