@@ -134,8 +134,9 @@ TEST(PassCurve, EachAxisHasAnOrientationWhoseHalvesAreSlabs) {
 }
 
 // lay_halves: the curve's halves are the two sides of the face given, across the axis given,
-// whatever the other axes' shifts, for every face from the grid's first to its last; the nearest
-// face; the cells of coordinates on a cube too small for the reciprocal of its side.
+// whatever the other axes' shifts, for every face from the grid's first to its last, and
+// in_second_half names them without the key; the nearest face; the cells of coordinates on a
+// cube too small for the reciprocal of its side.
 TEST(PassCurve, HalvesAreTheSidesOfTheFaceGiven) {
   const engine::HilbertFrame frame{{0.0, 0.0, 0.0}, 1.0};
   std::mt19937_64 rng(13);
@@ -154,6 +155,8 @@ TEST(PassCurve, HalvesAreTheSidesOfTheFaceGiven) {
         const bool lower = curve.cell(c, axis) < face;
         below += lower ? 1 : 0;
         ASSERT_EQ(curve.key(static_cast<std::uint32_t>(v)) < PassCurve::kHalfKey, lower)
+            << "axis " << axis << ", face " << face << ", point " << v;
+        ASSERT_EQ(curve.in_second_half(static_cast<std::uint32_t>(v)), !lower)
             << "axis " << axis << ", face " << face << ", point " << v;
       }
       if (face == 0) {
