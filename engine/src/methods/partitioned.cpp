@@ -9,8 +9,8 @@
 // epochs, and its dead slots are reused at once. The passes follow the BRIO rounds of the walk
 // mode's order; a pass of several parts ends when its first part is done, and the points the
 // others have not tried wait for the next pass. What is left after the last round goes in by
-// further passes, the last ones on one thread. Walk mode only: the passes change the insertion order, which the
-// DAG's expected cost rests on.
+// further passes, the last ones on one thread. Walk mode only: the passes change the insertion
+// order, which the DAG's expected cost rests on.
 #include <algorithm>
 #include <array>
 #include <atomic>

@@ -65,7 +65,7 @@ KeyedId* sort_low_digits(KeyedId* a, KeyedId* b, std::size_t n, int top) {
   // Only the counters of the digits sorted by are cleared: a split's part, sorted by its two
   // lowest digits, cleared all eight (16 KiB) for a few dozen items (2 threads sorting 500,000
   // 30-bit keys took longer than one).
-  std::array<std::array<std::size_t, 256>, kDigits> count;  // NOLINT: rows [0, top) cleared below
+  std::array<std::array<std::size_t, 256>, kDigits> count;  // rows [0, top) cleared below
   for (int d = 0; d < top; ++d) count[static_cast<std::size_t>(d)].fill(0);
   for (std::size_t i = 0; i < n; ++i) {
     for (int d = 0; d < top; ++d) ++count[static_cast<std::size_t>(d)][digit_of(a[i], d)];
