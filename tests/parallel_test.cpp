@@ -927,10 +927,10 @@ TEST(ParallelMethods, PartitionRollbackRestoresTheRecordsAliveness) {
 // exact kernels, nothing abandoned, every postponed or deferred point inserted by a later pass
 // (the last pass leaves none; each point but the first four is tried to the end in exactly one
 // pass: the passes' points less those carried on add up to them, and the duplicates found are
-// the sequential run's), the passes after the rounds last, on one thread after one of them
-// postponed a third of its points, only passes of several parts deferring, and the postponement
-// taken with both insertions (for the flips that is an undo when the refusal comes after a
-// write), some of them by walks stopped at a part's border.
+// the sequential run's), the passes after the rounds last, never deferring, and on one thread
+// after one of them postponed a third of its points, and the postponement taken with both
+// insertions (for the flips that is an undo when the refusal comes after a write), some of them
+// by walks stopped at a part's border.
 TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
   std::uint64_t postponed[2] = {0, 0};
   std::uint64_t stopped_walks[2] = {0, 0};
@@ -965,11 +965,12 @@ TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
           bool after_rounds = false;
           bool one_thread_on = false;  // a pass after the rounds postponed a third or more
           for (const engine::PartitionPass& pass : passes) {
-            // The passes after the rounds come last, and once one of them postponed a third of
-            // its points or more, the rest run on one thread.
+            // The passes after the rounds come last, run to their end, and once one of them
+            // postponed a third of its points or more, the rest run on one thread.
             EXPECT_TRUE(pass.after_rounds || !after_rounds) << what;
             after_rounds = pass.after_rounds;
             if (after_rounds) {
+              EXPECT_EQ(pass.deferred, 0u) << what;
               if (one_thread_on) {
                 EXPECT_EQ(pass.parts, 1u) << what;
               }
@@ -1023,6 +1024,9 @@ TEST(ParallelMethods, PartitionedDefersWhatTheSlowerPartsHaveNotTried) {
     for (const engine::PartitionPass& pass : result.stats.partition_passes) {
       tried_to_the_end += pass.points - pass.postponed - pass.deferred;
       deferred += pass.deferred;
+      if (pass.after_rounds) {
+        EXPECT_EQ(pass.deferred, 0u) << seed;
+      }
     }
     EXPECT_EQ(tried_to_the_end, points.size() - 4) << seed;
     EXPECT_EQ(result.stats.partition_passes.back().deferred, 0u) << seed;

@@ -7,10 +7,10 @@
 // whose walk would leave the tetrahedra no other thread writes, is given up (PartitionSync) and
 // waits for the next pass, whose cuts lie elsewhere. So a thread reads nothing another writes: no
 // epochs, and its dead slots are reused at once. The passes follow the BRIO rounds of the walk
-// mode's order; a pass of several parts ends when its first part is done, and the points the
-// others have not tried wait for the next pass. What is left after the last round goes in by
-// further passes, the last ones on one thread. Walk mode only: the passes change the insertion
-// order, which the DAG's expected cost rests on.
+// mode's order; a round's pass ends when its first part is done, and the points the others have
+// not tried wait for the next pass. What is left after the last round goes in by further passes,
+// the last ones on one thread. Walk mode only: the passes change the insertion order, which the
+// DAG's expected cost rests on.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -157,20 +157,19 @@ class PartitionedRun {
   }
 
   // Inserts `pending` on `parts` threads; the vertices so far are the first four and those of
-  // order[0, vertices_end) not pending. Returns the points postponed (given up) and, in a pass of
-  // several parts, those deferred: once one part has tried all its points, the others stop and
-  // leave the points they have not tried to the next pass, which spreads them over every thread,
+  // order[0, vertices_end) not pending. Returns the points postponed (given up) and, in a round's
+  // pass, those deferred: once one part has tried all its points, the others stop and leave
+  // the points they have not tried to the next pass, which spreads them over every thread,
   // instead of idle threads waiting for the slowest (the parts' work differs, and so do the cores'
-  // speeds on a shared machine). A pass of one part runs to its end, and another pass follows
-  // any that carries points. (The passes after the rounds did not defer until the fifteenth
-  // session: on two threads the first of them waited up to a quarter of its time for its slower
-  // part.)
+  // speeds on a shared machine). The passes after the rounds run to their end: deferring there
+  // too often left a few thousand points to the one-thread pass, and the runs were no faster
+  // (performance-log.md, fifteenth session).
   std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t vertices_end,
                                   int parts, PassKind kind) {
     const auto start = std::chrono::steady_clock::now();
     // A hint, read between insertions; the threads' start and join order everything else.
     first_part_done_.store(false, std::memory_order_relaxed);
-    const bool defers = parts > 1;
+    const bool defers = kind == PassKind::Round && parts > 1;
     // A round's points are a sample of the input's, so the input's quantiles split them evenly;
     // the points after the rounds crowd where earlier parts met or where a part stopped.
     cut(parts, vertices_end, kind == PassKind::Round ? nullptr : &pending);
