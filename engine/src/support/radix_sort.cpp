@@ -61,6 +61,8 @@ KeyedId* insertion_sort(KeyedId* a, std::size_t n) {
 // a and b (one counting pass serves every digit; a digit the same in all n keys is skipped).
 // Returns a or b, whichever holds the result.
 KeyedId* sort_low_digits(KeyedId* a, KeyedId* b, std::size_t n, int top) {
+  // By the whole key: wherever a range is sorted by its digits below `top`, the digits from
+  // `top` up are the same in all its keys (the whole array's top ones, and a split's digit).
   if (n <= kInsertionSort) return insertion_sort(a, n);
   // Only the counters of the digits sorted by are cleared: a split's part, sorted by its two
   // lowest digits, cleared all eight (16 KiB) for a few dozen items (2 threads sorting 500,000
