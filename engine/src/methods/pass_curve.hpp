@@ -64,7 +64,7 @@ class PassCurve {
   [[nodiscard]] std::uint32_t nearest_face(double c, int axis) const {
     return on_grid(std::round(in_cells(c, axis)), kInputCells);
   }
-  // A length in the grid's cells.
+  // A length in the grid's cells (divided first: a tiny extent's reciprocal would overflow).
   [[nodiscard]] double cells_in(double length) const {
     return input_.extent > 0 ? length / input_.extent * kInputCells : 0.0;
   }
@@ -97,7 +97,7 @@ class PassCurve {
     assert(halves_axis_ >= 0);
     const std::uint32_t axis_bits = kAxisBits[static_cast<std::size_t>(2 - halves_axis_)];
     const std::uint32_t top_bit = axis_bits & (std::uint32_t{7} << (3 * (kBits - 1)));
-    return (((cells_[v] | ~axis_bits) + (shift_ & axis_bits)) & top_bit) != 0;
+    return (add_axis(cells_[v], shift_, axis_bits) & top_bit) != 0;
   }
 
   // Point v's key on the current curve.
@@ -108,7 +108,7 @@ class PassCurve {
   // Two interleaved cells added axis by axis (no axis may overflow kBits bits).
   static constexpr std::uint32_t add_cells(std::uint32_t a, std::uint32_t b) {
     std::uint32_t sum = 0;
-    for (const std::uint32_t axis : kAxisBits) sum |= ((a | ~axis) + (b & axis)) & axis;
+    for (const std::uint32_t axis : kAxisBits) sum |= add_axis(a, b, axis);
     return sum;
   }
 
@@ -116,11 +116,16 @@ class PassCurve {
   // Each axis's bits in an interleaved code of kBits levels: z at 3 b, y at 3 b + 1, x at 3 b + 2.
   static constexpr std::array<std::uint32_t, 3> kAxisBits = {0x09249249u, 0x12492492u, 0x24924924u};
 
-  // c's distance from the cube's lower face across `axis`, in cells (divided first: a tiny
-  // extent's reciprocal would overflow).
+  // The bits `axis_bits` (one axis's) of two interleaved cells added: the other axes' bits, set
+  // to one in a, carry the axis's carries over them, and the mask drops what they caught.
+  static constexpr std::uint32_t add_axis(std::uint32_t a, std::uint32_t b,
+                                          std::uint32_t axis_bits) {
+    return ((a | ~axis_bits) + (b & axis_bits)) & axis_bits;
+  }
+
+  // c's distance from the cube's lower face across `axis`, in cells.
   [[nodiscard]] double in_cells(double c, int axis) const {
-    const double lo = predicates::coordinate(input_.lo, axis);
-    return input_.extent > 0 ? (c - lo) / input_.extent * kInputCells : 0.0;
+    return cells_in(c - predicates::coordinate(input_.lo, axis));
   }
 
   // x as a whole number in [0, most], truncated (NaN, from coordinates too far apart to
