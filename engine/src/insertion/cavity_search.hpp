@@ -117,10 +117,11 @@ class CavitySearch {
         // A confined thread may read n (across a face of its own tetrahedron) and asks only
         // for the cavity's: an outside tetrahedron just gets a back reference, written
         // atomically, which no other thread follows (the face has none of its vertices).
-        *in_conflict = geometry_.in_conflict(mesh_.tets[n], p);
+        const Tet& record = mesh_.tets[n];
+        *in_conflict = geometry_.in_conflict(record, p);
         if (*in_conflict) {
           // n shares the face with s, which this thread holds: its apex decides.
-          if (!sync_.acquire_across(n, ref_face(out))) return false;
+          if (!sync_.acquire_across(n, record, ref_face(out))) return false;
           enter(n, ref_face(out));
         }
       } else {

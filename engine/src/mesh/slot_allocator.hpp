@@ -4,8 +4,10 @@
 // slots an insertion killed are reused once it has ended (its legalization stack may name them
 // until then); on a shared mesh only after the epochs say no other thread's operation can reach
 // them (slot_reclaimer.hpp), unless the thread's reads are confined (mesh/read_confinement.hpp:
-// nobody else reaches its dead slots, reused at once). Fresh slots come in runs of kSlotRun from
-// the store: one atomic step per run, and one thread's records share cache lines only with its own.
+// nobody else reaches its dead slots, reused at once). Fresh slots come in runs from the store
+// (kFirstSlotRun doubling to kLongestSlotRun): one atomic step per run, and one thread's records
+// share cache lines and mostly pages only with its own.
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 
@@ -55,7 +57,7 @@ class SlotAllocator {
 
   // A free slot: a reused one, else the next of this thread's run of fresh slots.
   // Always inlined (out of line it was a call per new tetrahedron, and GCC's choice changed
-  // with the caller's size); a new run of fresh slots, once in 64, is the call.
+  // with the caller's size); a new run of fresh slots is the call.
   [[gnu::always_inline]] TetId allocate() {
     TetId id = kNoTet;
     if (!free_slots_.empty()) {
@@ -80,15 +82,22 @@ class SlotAllocator {
   // t died in the current insertion (walk mode). Always inlined, like allocate.
   [[gnu::always_inline]] void retire(TetId t) { retired_.push_back(t); }
 
-  // 64 slots (of 40 or 56 bytes: 40 or 56 cache lines): a run spans whole cache lines, and what
-  // a run leaves unused at the end (dead, never alive) is at most 63 slots per thread.
-  static constexpr std::size_t kSlotRun = 64;
+  // A thread's runs of fresh slots start at kFirstSlotRun and double up to kLongestSlotRun. Whole
+  // runs keep one thread's records on cache lines of its own; long ones also keep them on pages
+  // of its own: with runs of 64 slots (2 KiB at 32 bytes) two threads' runs alternated within
+  // each 4 KiB page, every page a thread wrote held the other's records too, and a 2-thread
+  // partitioned run was 2.5-7 % slower (uniform:1000000, docs/performance-log.md, sixteenth
+  // session). Short first runs keep a small run's unused tail small: what a thread leaves
+  // unused at the end (dead, never alive) is less than its last run.
+  static constexpr std::size_t kFirstSlotRun = 64;
+  static constexpr std::size_t kLongestSlotRun = 1024;
 
  private:
   [[gnu::noinline]] void next_run() {
     std::size_t count = 0;
-    run_next_ = store_.allocate_run(kSlotRun, count);
+    run_next_ = store_.allocate_run(run_length_, count);
     run_end_ = run_next_ + static_cast<TetId>(count);
+    run_length_ = std::min(2 * run_length_, kLongestSlotRun);
   }
   // A dead slot: free at once for the owning engine, after the epochs on a shared mesh.
   void release(TetId t) {
@@ -108,6 +117,7 @@ class SlotAllocator {
   TetIdList attempt_created_;  // taken by the current attempt (track_attempts_ only)
   TetId run_next_ = 0;         // this thread's run of fresh slots: [run_next_, run_end_)
   TetId run_end_ = 0;
+  std::size_t run_length_ = kFirstSlotRun;  // of the next run
 };
 
 }  // namespace dtlab::engine

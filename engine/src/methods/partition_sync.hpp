@@ -44,13 +44,15 @@ class PartitionSync : public LocalUndoLog {
   }
 
   // acquire(t) for a tetrahedron entered across its face `face` from one this thread holds (the
-  // cavity search's step): the face's three vertices are that one's, this part's or the vertex at
-  // infinity, so only t's vertex opposite the face can be another part's. One look-up, not four.
-  bool acquire_across(TetId t, int face) const {
+  // cavity search's step), `record` being t's record, which the search has just read: the face's
+  // three vertices are that one's, this part's or the vertex at infinity, so only t's vertex
+  // opposite the face can be another part's. One look-up, not four, and always inlined.
+  [[gnu::always_inline]] bool acquire_across(TetId t, const Tet& record, int face) const {
     if (whole_) return true;
-    const VertexId apex = mesh_.tets[t].vertex[static_cast<std::size_t>(face)];
+    const VertexId apex = record.vertex[static_cast<std::size_t>(face)];
     const bool owned = apex == kInfiniteVertex || mine(apex);
     assert(owned == acquire(t));
+    (void)t;
     return owned;
   }
 
@@ -79,7 +81,9 @@ class PartitionSync : public LocalUndoLog {
 
  private:
   // v is a finite vertex of this thread's part.
-  [[nodiscard]] bool mine(VertexId v) const { return v != kInfiniteVertex && part_of_[v] == part_; }
+  [[nodiscard, gnu::always_inline]] bool mine(VertexId v) const {
+    return v != kInfiniteVertex && part_of_[v] == part_;
+  }
 
   const std::vector<std::uint8_t>& part_of_;
   std::uint8_t part_ = 0;
