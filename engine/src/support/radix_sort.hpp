@@ -13,7 +13,7 @@ using KeyedId = std::pair<std::uint64_t, std::uint32_t>;
 // significant digit first, one counting pass for all digits. On several (at least
 // kParallelMinimum items a thread): split by the most significant varying digit (each thread
 // counts and places its own range of the array), then the parts handed to whichever thread is
-// free, each sorted by the digits below (split again while it holds over 4096 items, then least
+// free, each sorted by the digits below (split again while it holds over 16,384 items, then least
 // significant first, in the cache); when one part would hold more than a thread's share (a far
 // outlier's key), every digit's pass goes over the whole array instead, each split over the
 // threads. The same order as std::stable_sort by key, whatever `threads`.
