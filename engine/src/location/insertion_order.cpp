@@ -95,11 +95,33 @@ void brio_hilbert_order(const std::vector<predicates::Point3>& points,
   // kFirstRound points. Equal keys keep the random order (ties are broken by position: the sort
   // is stable, on any number of threads).
   std::vector<KeyedId> scratch = populated_vector<KeyedId>(keyed.size(), threads);
-  std::size_t end = keyed.size();
-  while (end > 0) {
-    const std::size_t begin = end <= kFirstRound ? 0 : end / 2;
-    stable_sort_by_key(keyed.data() + begin, scratch.data() + begin, end - begin, threads);
-    end = begin;
+  auto sort_rounds_below = [&](std::size_t end, int sort_threads) {
+    while (end > 0) {
+      const std::size_t begin = end <= kFirstRound ? 0 : end / 2;
+      stable_sort_by_key(keyed.data() + begin, scratch.data() + begin, end - begin, sort_threads);
+      end = begin;
+    }
+  };
+  const std::size_t n = keyed.size();
+  const std::size_t last_begin = n <= kFirstRound ? 0 : n / 2;
+  if (threads < 2 || last_begin == 0) {
+    sort_rounds_below(n, threads);
+  } else {
+    // The last round holds half the points and the rounds before it the other half: half the
+    // threads sort the one while the rest sort the others, instead of every round in turn on all
+    // of them (a sort of a few thousand keys on two threads gains little).
+    const int last_threads = threads / 2;
+    in_parallel_ranges(
+        2, 2,
+        [&](std::size_t, std::size_t, std::size_t part) {
+          if (part == 0) {
+            sort_rounds_below(last_begin, threads - last_threads);
+          } else {
+            stable_sort_by_key(keyed.data() + last_begin, scratch.data() + last_begin,
+                               n - last_begin, last_threads);
+          }
+        },
+        /*minimum=*/0);
   }
   in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) ids[i] = keyed[i].second;

@@ -49,8 +49,14 @@ constexpr bool kSlabs = true;
 constexpr double kSlabCells = 8;
 // Tetrahedra looked at around an anchor point for a readable start (place_walk_starts).
 constexpr std::size_t kStartSearch = 4096;
-// A part's anchors: every this many of its pending points in a pass (place_walk_starts).
-constexpr std::size_t kAnchorSpacing = 256;
+// A part's anchors: every this many of its pending points in a pass (place_walk_starts). Arcs'
+// walks stop at their border (an arc leaves the points' box and comes back elsewhere), and
+// their next walks need a start beyond it; a slab is convex, and no walk stopped at a slab's
+// border in any input measured (uniform, grid, sphere, dragon_vrip at 1M points or all of it),
+// so slabs have a quarter of the anchors (their setups 12 ms shorter at 1M uniform points;
+// performance-log.md, sixteenth session).
+constexpr std::size_t kArcAnchorSpacing = 256;
+constexpr std::size_t kSlabAnchorSpacing = 1024;
 
 // A part gets at least options.points_per_part points: in smaller passes the parts are small,
 // most insertions cross a cut, and one thread is faster.
@@ -120,6 +126,10 @@ class PartitionedRun {
   std::vector<Tetrahedron> run() {
     std::vector<std::uint32_t> carried;  // postponed and deferred points, for the next pass
     const auto rounds = brio_rounds(run_.order.size());
+    last_round_begin_ = rounds.back().first;
+    // The sort buffers' size while they are kept: the last round's points and an eighth more
+    // for the points carried into its pass (about 7 % at 1M uniform points, 2 threads).
+    sort_buffer_size_ = (rounds.back().second - rounds.back().first) * 9 / 8;
     for (const auto& [begin, end] : rounds) {
       std::vector<std::uint32_t> pending(run_.order.begin() + static_cast<std::ptrdiff_t>(begin),
                                          run_.order.begin() + static_cast<std::ptrdiff_t>(end));
@@ -173,7 +183,12 @@ class PartitionedRun {
     // A round's points are a sample of the input's, so the input's quantiles split them evenly;
     // the points after the rounds crowd where earlier parts met or where a part stopped.
     cut(parts, vertices_end, kind == PassKind::Round ? nullptr : &pending);
-    if (parts > 1) sort_along_pass_curve(pending);
+    // The rounds' passes before the last reuse one pair of sort buffers (mapping fresh pages for
+    // each pass cost nearly as much as its sort); the last round's pass frees them after its
+    // sort, so that they do not add to the run's peak, which comes later.
+    if (parts > 1) {
+      sort_along_pass_curve(pending, kind == PassKind::Round && vertices_end < last_round_begin_);
+    }
     for (int i = 0; i < run_.threads; ++i) {
       syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
     }
@@ -224,9 +239,16 @@ class PartitionedRun {
   // A pass cut along a curve inserts along it: each part's points are then one run, so that a
   // thread walks from each point to the next, not across the other parts between its runs of the
   // walk mode's order (an arc is not convex). The keys also name the pending points' parts.
-  void sort_along_pass_curve(std::vector<std::uint32_t>& pending) {
-    std::vector<KeyedId> keyed = populated_vector<KeyedId>(pending.size(), run_.threads);
-    std::vector<KeyedId> scratch = populated_vector<KeyedId>(pending.size(), run_.threads);
+  void sort_along_pass_curve(std::vector<std::uint32_t>& pending, bool keep_buffers) {
+    if (sort_keyed_.size() < pending.size()) {
+      const std::size_t size =
+          keep_buffers ? std::max(pending.size(), sort_buffer_size_) : pending.size();
+      sort_keyed_ = {};  // freed before the larger pair is mapped
+      sort_scratch_ = {};
+      sort_keyed_ = populated_vector<KeyedId>(size, run_.threads);
+      sort_scratch_ = populated_vector<KeyedId>(size, run_.threads);
+    }
+    KeyedId* const keyed = sort_keyed_.data();
     in_parallel_ranges(
         pending.size(), run_.threads, [&](std::size_t begin, std::size_t end, std::size_t) {
           for (std::size_t i = begin; i < end; ++i) {
@@ -235,8 +257,12 @@ class PartitionedRun {
             keyed[i] = {key, pending[i]};
           }
         });
-    stable_sort_by_key(keyed.data(), scratch.data(), keyed.size(), run_.threads);
-    for (std::size_t i = 0; i < keyed.size(); ++i) pending[i] = keyed[i].second;
+    stable_sort_by_key(keyed, sort_scratch_.data(), pending.size(), run_.threads);
+    for (std::size_t i = 0; i < pending.size(); ++i) pending[i] = keyed[i].second;
+    if (!keep_buffers) {
+      sort_keyed_ = {};
+      sort_scratch_ = {};
+    }
   }
 
   // Lays the pass's curve (moved by pass_shift; for two parts centred across next_slab_axis on
@@ -329,7 +355,8 @@ class PartitionedRun {
     return -1;
   }
   // Before a pass of several parts, each part on its own thread: the walk starts of the part at its
-  // anchors, every kAnchorSpacing-th of its pending points (the first included), each a
+  // anchors, every kArcAnchorSpacing-th (kSlabAnchorSpacing-th for slabs) of its pending points
+  // (the first included), each a
   // tetrahedron with a vertex of the part (readable: no other thread writes it in the pass), the
   // nearest found to the anchor point. The walks to these points may go anywhere now, as nobody
   // writes. A part's first walk starts at its first anchor; a later anchor's start is taken after
@@ -340,10 +367,11 @@ class PartitionedRun {
   // none: the part's points after it wait for the next anchor or pass.
   void place_walk_starts(int parts, const std::vector<std::uint32_t>& pending) {
     std::vector<std::size_t> counted(static_cast<std::size_t>(parts), 0);
+    const std::size_t spacing = slab_axis_ >= 0 ? kSlabAnchorSpacing : kArcAnchorSpacing;
     for (auto& a : anchors_) a.clear();
     for (std::size_t position = 0; position < pending.size(); ++position) {
       const std::uint8_t part = part_of_[pending[position]];
-      if (counted[part]++ % kAnchorSpacing == 0) anchors_[part].push_back({position, kNoTet});
+      if (counted[part]++ % spacing == 0) anchors_[part].push_back({position, kNoTet});
     }
     most_points_ = *std::max_element(counted.begin(), counted.end());
     // Each part's walks on its own thread: they only read, and nobody writes until they end.
@@ -468,6 +496,10 @@ class PartitionedRun {
                                  // several parts), or -1: arcs cut at the keys' quantiles
   int last_slab_axis_ = -1;      // of the last pass cut into slabs
   std::size_t most_points_ = 0;  // this pass: the most pending points a part has
+  std::size_t last_round_begin_ = 0;  // the last BRIO round's first position in the order
+  std::size_t sort_buffer_size_ = 0;  // the sort buffers' size while the rounds keep them
+  std::vector<KeyedId> sort_keyed_;   // the pass's (key, point) pairs, sorted
+  std::vector<KeyedId> sort_scratch_;
   std::vector<std::unique_ptr<PartitionSync>> syncs_;
   std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
   std::vector<std::vector<std::uint32_t>> failed_;    // per thread, this pass
