@@ -109,7 +109,8 @@ void brio_hilbert_order(const std::vector<predicates::Point3>& points,
   } else {
     // The last round holds half the points and the rounds before it the other half: half the
     // threads sort the one while the rest sort the others, instead of every round in turn on all
-    // of them (a sort of a few thousand keys on two threads gains little).
+    // of them (at 1M points the rounds' sorts took 10-12 ms that way on two threads, 13-15 ms on
+    // one).
     const int last_threads = threads / 2;
     in_parallel_ranges(
         2, 2,
