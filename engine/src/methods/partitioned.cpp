@@ -125,11 +125,13 @@ class PartitionedRun {
 
   std::vector<Tetrahedron> run() {
     std::vector<std::uint32_t> carried;  // postponed and deferred points, for the next pass
-    const auto rounds = brio_rounds(run_.order.size());
-    last_round_begin_ = rounds.back().first;
-    // The sort buffers' size while they are kept: the last round's points and an eighth more
-    // for the points carried into its pass (about 3 % at 1M uniform points, 2 threads).
-    sort_buffer_size_ = (rounds.back().second - rounds.back().first) * 9 / 8;
+    const auto rounds = brio_rounds(run_.order.size());  // none when only the first four points
+    if (!rounds.empty()) {
+      last_round_begin_ = rounds.back().first;
+      // The sort buffers' size while they are kept: the last round's points and an eighth more
+      // for the points carried into its pass (about 3 % at 1M uniform points, 2 threads).
+      sort_buffer_size_ = (rounds.back().second - rounds.back().first) * 9 / 8;
+    }
     for (const auto& [begin, end] : rounds) {
       std::vector<std::uint32_t> pending(run_.order.begin() + static_cast<std::ptrdiff_t>(begin),
                                          run_.order.begin() + static_cast<std::ptrdiff_t>(end));
