@@ -18,6 +18,7 @@
 #include <thread>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "dtlab/engine/methods.hpp"
 #include "dtlab/engine/repair.hpp"
@@ -26,6 +27,8 @@
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/predicates/kernels.hpp"
 #include "insertion/inserter.hpp"
+#include "mesh/slot_allocator.hpp"
+#include "mesh/tet_store.hpp"
 #include "methods/burglary.hpp"
 #include "methods/curve_partition.hpp"
 #include "methods/distribution.hpp"
@@ -188,6 +191,52 @@ TEST(ParallelMethods, ConcurrentThreadsMapEachStoreBlockOnce) {
     small.allocate_run(64, count);
   }
   EXPECT_EQ(small.blocks_mapped(), 1u);
+}
+
+// Two inserting threads' fresh slots (SlotAllocator, taking turns as two threads would): each
+// one's runs double from kFirstSlotRun to kLongestSlotRun and stay there, so past the first few
+// its records lie in long stretches of its own (with runs of 64, two threads' runs alternated
+// within every 4 KiB page of 32-byte slots).
+TEST(SlotAllocator, FreshSlotsComeInRunsThatDoubleToTheLongest) {
+  using engine::SlotAllocator;
+  engine::TetStore store;
+  SlotAllocator first(store, /*recycle=*/true, /*reclaimer=*/nullptr, /*track_attempts=*/false);
+  SlotAllocator second(store, /*recycle=*/true, /*reclaimer=*/nullptr, /*track_attempts=*/false);
+  // The longest run spans several pages of the smallest slots (32 bytes: no lock words, no DAG).
+  EXPECT_GE(SlotAllocator::kLongestSlotRun * sizeof(engine::Tet), 8 * std::size_t{4096});
+  constexpr std::size_t kSlots = 20000;
+  std::vector<engine::TetId> mine;
+  std::vector<engine::TetId> theirs;
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    mine.push_back(first.allocate());
+    theirs.push_back(second.allocate());
+  }
+  // The lengths of the stretches of consecutive ids: one a run, as the other's runs lie between.
+  auto stretches = [](const std::vector<engine::TetId>& ids) {
+    std::vector<std::size_t> lengths{1};
+    for (std::size_t i = 1; i < ids.size(); ++i) {
+      if (ids[i] == ids[i - 1] + 1) {
+        ++lengths.back();
+      } else {
+        lengths.push_back(1);
+      }
+    }
+    return lengths;
+  };
+  for (const auto& ids : {mine, theirs}) {
+    const std::vector<std::size_t> lengths = stretches(ids);
+    std::size_t expected = SlotAllocator::kFirstSlotRun;
+    for (std::size_t k = 0; k + 1 < lengths.size(); ++k) {  // the last run is cut short
+      EXPECT_EQ(lengths[k], expected) << "run " << k;
+      expected = std::min(2 * expected, SlotAllocator::kLongestSlotRun);
+    }
+    EXPECT_LE(lengths.back(), expected);
+    EXPECT_GT(lengths.size(), 10u);  // many runs of the longest
+  }
+  std::vector<engine::TetId> all = mine;
+  all.insert(all.end(), theirs.begin(), theirs.end());
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());  // no slot given twice
 }
 
 // The output's packing, block by block (TetStore::pack_quads): the kept slots' vertices, renamed,
