@@ -52,7 +52,7 @@ constexpr std::size_t kStartSearch = 4096;
 // A part's anchors: every this many of its pending points in a pass (place_walk_starts). Arcs'
 // walks stop at their border (an arc leaves the points' box and comes back elsewhere), and
 // their next walks need a start beyond it; a slab is convex, and no walk stopped at a slab's
-// border in any input measured (uniform, grid, sphere, dragon_vrip at 1M points or all of it),
+// border in any input measured (uniform:1000000, grid:1000000, sphere:100000, dragon_vrip),
 // so slabs have a quarter of the anchors (their setups 12 ms shorter at 1M uniform points;
 // performance-log.md, sixteenth session).
 constexpr std::size_t kArcAnchorSpacing = 256;
