@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -13,6 +14,7 @@
 #include "dtlab/engine/triangulate.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "methods/lock_grid.hpp"
+#include "undo_check.hpp"
 
 namespace dtlab::test {
 namespace {
@@ -98,39 +100,32 @@ TEST(ParallelMethods, LockGridSyncHoldsCellsAndWaitsOnlyForHigherIds) {
   EXPECT_EQ(grid.word(7).load(), 0u);
 }
 
-// A give-up after writes (the flips' case) restores them from the undo log, in the store the
-// method runs on (aliveness in the word beside each record): the written references back, the
-// killed tetrahedron alive, the new one dead, every cell let go.
-TEST(ParallelMethods, LockGridRollbackUndoesWhatTheInsertionWrote) {
-  const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+// The lock-grid method's give-ups after flips leave the mesh as it was (undo_check.hpp), in the
+// store the method runs on (aliveness in the word beside each record), and let go of every cell:
+// each try finds a random fifth of the cells held by a thread of higher priority (id 1; this one
+// is 2), so that flips are refused after others were written.
+TEST(ParallelMethods, LockGridRollbackRestoresTheMeshAfterFlips) {
+  const auto points = generators::generate("uniform", 1500, 7).points;
   engine::SharedMesh mesh(points);
   mesh.tets.keep_children(false);
   mesh.tets.keep_lock_words(true);
-  const TetId t = mesh.tets.allocate();
-  mesh.tets[t].vertex = {0, 1, 2, 3};
-  mesh.tets[t].neighbor = {engine::face_ref(t, 0), engine::face_ref(t, 1), engine::face_ref(t, 2),
-                           engine::face_ref(t, 3)};
-  mesh.tets.set_alive(t, true);
-  const LockGrid grid(points, points.size(), 2);
+  const LockGrid grid(points, points.size(), 6);
+  const std::uint32_t cells = 6 * 6 * 6;
   std::atomic<bool> stop{false};
   ThreadStats stats;
-  LockGridSync sync(mesh, grid, 1, stats, stop);
-  ASSERT_TRUE(sync.acquire(t));
-  sync.before_write(t);
-  const TetId fresh = mesh.tets.allocate();
-  mesh.tets[fresh].vertex = {4, 1, 2, 3};
-  sync.created(fresh);
-  mesh.tets.set_alive(fresh, true);
-  engine::store_neighbor(mesh.tets[t], 0, engine::face_ref(fresh, 0));
-  sync.before_write(t);  // written twice: the first entry wins
-  engine::store_neighbor(mesh.tets[t], 1, engine::face_ref(fresh, 1));
-  mesh.tets.set_alive(t, false);
-  sync.rollback();
-  EXPECT_EQ(mesh.tets[t].neighbor[0], engine::face_ref(t, 0));
-  EXPECT_EQ(mesh.tets[t].neighbor[1], engine::face_ref(t, 1));
-  EXPECT_TRUE(mesh.tets.is_alive(t));
-  EXPECT_FALSE(mesh.tets.is_alive(fresh));
-  for (std::uint32_t cell = 0; cell < 8; ++cell) EXPECT_EQ(grid.word(cell).load(), 0u) << cell;
+  LockGridSync sync(mesh, grid, 2, stats, stop);
+  std::mt19937 rng(11);
+  const auto counts =
+      check_give_ups_undo(points, mesh, sync, 500, [&](engine::VertexId v, bool refuse) {
+        for (std::uint32_t cell = 0; cell < cells; ++cell) {
+          // Nothing of this thread's is held between tries: every cell free, or the other's.
+          EXPECT_NE(grid.word(cell).load(), 2u) << cell;
+          grid.word(cell).store(refuse && rng() % 5 == 0 ? 1 : 0);
+        }
+        if (refuse) grid.word(grid.cell_of(v)).store(0);
+      });
+  EXPECT_GT(counts.give_ups, 100);
+  EXPECT_GT(counts.after_flips, 20);
 }
 
 // Whole runs on grids of 2 and 3 cells per axis, so that the threads meet in cells: the unique

@@ -34,17 +34,13 @@ class Flipper : public MeshEditor<K, Sync> {
     if (!force && !geometry_.in_conflict(mesh_.tets[t2], apex)) return Flip::NotApplied;
     if (++flips > this->options_.max_flips_per_insertion) return Flip::Exhausted;
     if (!sync_->acquire(t2)) return Flip::GaveUp;
-    if constexpr (Sync::kLocks) {
-      // A flip locks the records around t and t2 (it writes back references into them): ask
-      // for their cache lines now, so that they arrive during the orientation tests below
-      // instead of stalling the lock's first load. The sequential walk's stores to them wait in
-      // the store buffer instead: there the prefetch measured no gain (docs/performance.md,
-      // "Measured choices").
-      for (int f = 0; f < 4; ++f) {
-        if (f != ip) mesh_.tets.prefetch(ref_tet(tet.neighbor[static_cast<std::size_t>(f)]));
-        if (f != ref_face(across)) {
-          mesh_.tets.prefetch(ref_tet(mesh_.tets[t2].neighbor[static_cast<std::size_t>(f)]));
-        }
+    // A flip writes back references into the records around t and t2 (a locking policy locks
+    // them first), and the legalization reads them next: ask for their cache lines now, so that
+    // they arrive during the orientation tests below (docs/performance.md, "Measured choices").
+    for (int f = 0; f < 4; ++f) {
+      if (f != ip) mesh_.tets.prefetch(ref_tet(tet.neighbor[static_cast<std::size_t>(f)]));
+      if (f != ref_face(across)) {
+        mesh_.tets.prefetch(ref_tet(mesh_.tets[t2].neighbor[static_cast<std::size_t>(f)]));
       }
     }
     // Where does segment apex-y pass face F = t minus apex? o[m] is the orientation of t with

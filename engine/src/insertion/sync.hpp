@@ -4,7 +4,9 @@
 // with these members (methods/ implements them; the sequential engine's is NoSync below):
 //   kLocks             whether it locks at all (false compiles the lock calls away)
 //   acquire(t)         lock t before reading it for change or writing it; false: give up
-//   before_write(t)    t is about to be written for the first time in this insertion (undo log)
+//   before_write(t)    t is about to be written for the first time in this insertion (undo log;
+//                      a policy with kReglueOnUndo is told only of the tetrahedra that die:
+//                      mesh/topology_commit.hpp)
 //   created(t, last)   t is new, owned by this thread from birth; `last`: the insertion's last
 //                      write (a cavity's), after which nothing can be refused
 //   killed(t, last)    t died by this thread's write

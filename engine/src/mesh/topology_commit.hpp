@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <span>
 
+#include "mesh/read_confinement.hpp"
 #include "mesh/shared_mesh.hpp"
 #include "mesh/slot_allocator.hpp"
 #include "mesh/tet_store.hpp"
@@ -41,6 +42,14 @@ class StoreSlots {
 
  private:
   TetStore& store_;
+};
+
+// Whether lock_and_log logs the outside neighbours (which get back references) before the write:
+// yes, unless the policy's rollback restores their references from the dead tetrahedra it brings
+// back (kReglueOnUndo: methods/local_undo_log.hpp).
+template <class Sync>
+inline constexpr bool kLogsOutside = !requires {
+  requires Sync::kReglueOnUndo;
 };
 
 template <class Sync, class Slots = SlotAllocator>
@@ -62,10 +71,14 @@ class TopologyCommit {
   template <class ForEachOutside>
   [[gnu::always_inline]] bool lock_and_log(ForEachOutside&& outside, std::span<const TetId> old) {
     if constexpr (Sync::kLocks) {
-      bool locked = true;
-      outside([&](TetId t) { locked = locked && sync_.acquire(t); });
-      if (!locked) return false;
-      outside([&](TetId t) { sync_.before_write(t); });
+      // A confined thread's outside neighbours, as its cavity's (cavity_search.hpp), only get a
+      // back reference across a face of its own, written atomically: not asked for.
+      if constexpr (!kConfinedReads<Sync>) {
+        bool locked = true;
+        outside([&](TetId t) { locked = locked && sync_.acquire(t); });
+        if (!locked) return false;
+      }
+      if constexpr (kLogsOutside<Sync>) outside([&](TetId t) { sync_.before_write(t); });
       for (const TetId o : old) sync_.before_write(o);
     }
     return true;

@@ -12,6 +12,7 @@
 // written by two threads nor read while another writes it: docs/design.md, "The partitioned
 // method", has the argument. A refusal gives the insertion up: a cavity has written nothing yet;
 // the flips are undone from this thread's log, and the point waits for a pass with other cuts.
+// A flip's outside neighbours, like a cavity's, are not asked (mesh/topology_commit.hpp).
 #include <cassert>
 #include <cstdint>
 #include <vector>
@@ -74,6 +75,14 @@ class PartitionSync : public LocalUndoLog {
       if (mine(v)) return true;
     }
     return false;
+  }
+
+  // A pass of one part refuses nothing, so its insertions are never undone: nothing to log.
+  void before_write(TetId t) {
+    if (!whole_) LocalUndoLog::before_write(t);
+  }
+  void created(TetId t, bool last_write = false) {
+    if (!whole_) LocalUndoLog::created(t, last_write);
   }
 
   void commit() { forget(); }
