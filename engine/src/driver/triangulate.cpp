@@ -45,10 +45,27 @@ class PreparedPoints {
     if (input_count_ >= static_cast<std::size_t>(kInfiniteVertex) - 8) {
       throw TriangulationError("too many points for 32-bit vertex ids");
     }
-    const CoordinateMagnitudes magnitudes = coordinate_magnitudes(points);
+    const bool walk_order = resolve_location(options.location).order == InsertionOrder::BrioHilbert;
+    // The first tetrahedron and the walk mode's order come from the input as given. The random
+    // order is drawn beside the scans of the coordinates (magnitudes, and the walk mode's curve
+    // frame, the points' box read in their own order): the shuffle is one thread's sequence, and
+    // the scans need nothing from it.
+    CoordinateMagnitudes magnitudes;
+    auto draw_order = [&] { order_ = random_order(input_count_, options.seed); };
+    auto scan = [&] {
+      magnitudes = coordinate_magnitudes(points);
+      if (walk_order && magnitudes.finite) frame_ = hilbert_frame(points, input_count_);
+    };
+    if (threads_ > 1) {
+      in_parallel_ranges(
+          2, 2,
+          [&](std::size_t, std::size_t, std::size_t part) { part == 0 ? scan() : draw_order(); },
+          /*minimum=*/0);
+    } else {
+      scan();
+      draw_order();
+    }
     if (!magnitudes.finite) throw TriangulationError("input has a NaN or infinite coordinate");
-    // The first tetrahedron and the walk mode's order come from the input as given.
-    order_ = random_order(input_count_, options.seed);
     const SimplexSearch search = find_simplex(points, order_);
     if (!search.simplex) {
       throw TriangulationError("no tetrahedralization exists: the affine dimension of the " +
@@ -57,7 +74,7 @@ class PreparedPoints {
                                "; at least 4 points not in one plane are needed");
     }
     simplex_ = *search.simplex;
-    if (resolve_location(options.location).order == InsertionOrder::BrioHilbert) store_in_order();
+    if (walk_order) store_in_order();
     // Exact power-of-two scaling of the largest magnitude into [2^99, 2^100) (signs are
     // unchanged), for every kernel when it is lossless, so that all kernels see the same numbers;
     // undone before the points are handed back. Every input is taken: when some coordinates still
@@ -106,17 +123,22 @@ class PreparedPoints {
   // with the vertices renumbered in it: the points are stored in the order they are inserted, so
   // that the points of neighbouring tetrahedra lie close in memory.
   void store_in_order() {
-    brio_hilbert_order(points_, order_, threads_);
+    brio_hilbert_order(points_, order_, threads_, &frame_);
     input_index_ = std::move(order_);
     // The first tetrahedron's engine ids, by one pass over the map rather than through its
     // inverse: a 4-byte-a-point inverse came from the heap (glibc raises its mmap threshold once
-    // a large block is freed) and, freed, stayed resident at the run's peak.
+    // a large block is freed) and, freed, stayed resident at the run's peak. Each id is found in
+    // one thread's range only, so the threads write different entries.
     const std::array<std::uint32_t, 4> simplex_input = simplex_;
-    for (std::size_t i = 0; i < input_count_; ++i) {
-      for (std::size_t k = 0; k < 4; ++k) {
-        if (input_index_[i] == simplex_input[k]) simplex_[k] = static_cast<std::uint32_t>(i);
-      }
-    }
+    in_parallel_ranges(input_count_, threads_,
+                       [&](std::size_t begin, std::size_t end, std::size_t) {
+                         for (std::size_t i = begin; i < end; ++i) {
+                           for (std::size_t k = 0; k < 4; ++k) {
+                             if (input_index_[i] == simplex_input[k])
+                               simplex_[k] = static_cast<std::uint32_t>(i);
+                           }
+                         }
+                       });
     permute(points_, input_index_, threads_);
     order_.clear();  // the identity: insertion order is storage order now (4 bytes a point less)
     order_.shrink_to_fit();
@@ -128,6 +150,7 @@ class PreparedPoints {
   std::vector<std::uint32_t> order_;        // insertion order (empty: the identity)
   std::vector<std::uint32_t> input_index_;  // engine vertex id -> input index, or empty
   std::array<std::uint32_t, 4> simplex_{};  // the first tetrahedron, in the engine's ids
+  HilbertFrame frame_{};                    // the walk mode's curve's cube
   RangeScaling scaling_;
 };
 

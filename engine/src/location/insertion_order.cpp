@@ -81,9 +81,11 @@ std::uint64_t hilbert_key_in(const HilbertFrame& frame, const predicates::Point3
 }
 
 void brio_hilbert_order(const std::vector<predicates::Point3>& points,
-                        std::vector<std::uint32_t>& ids, int threads) {
+                        std::vector<std::uint32_t>& ids, int threads,
+                        const HilbertFrame* given_frame) {
   if (ids.empty()) return;
-  const HilbertFrame frame = curve_frame(points, &ids, 0, threads);
+  const HilbertFrame frame =
+      given_frame != nullptr ? *given_frame : curve_frame(points, &ids, 0, threads);
   std::vector<KeyedId> keyed = populated_vector<KeyedId>(ids.size(), threads);
   in_parallel_ranges(ids.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {

@@ -22,18 +22,22 @@ inline std::uint64_t hilbert_key(std::uint32_t x, std::uint32_t y, std::uint32_t
   return kHilbertStates.key(x, y, z, bits);
 }
 
-// Reorders `ids` (a random order) into BRIO rounds, each sorted along the Hilbert curve of the
-// points' bounding box: the last round is the second half of `ids`, the one before it the
-// preceding quarter, and so on down to a first round of at most kFirstRound points. `threads`
-// share the keys and the sorts; the order is the same for any number of them.
-void brio_hilbert_order(const std::vector<predicates::Point3>& points,
-                        std::vector<std::uint32_t>& ids, int threads = 1);
-
 // The cube a Hilbert curve fills: its corner and side.
 struct HilbertFrame {
   predicates::Point3 lo;
   double extent;
 };
+
+// Reorders `ids` (a random order) into BRIO rounds, each sorted along the Hilbert curve of the
+// points' bounding box: the last round is the second half of `ids`, the one before it the
+// preceding quarter, and so on down to a first round of at most kFirstRound points. `threads`
+// share the keys and the sorts; the order is the same for any number of them. `frame`: that
+// box's cube, when the caller has it (hilbert_frame of all the points, when `ids` lists them
+// all: a box does not depend on the order its points are read in); else it is found from
+// points[ids], which reads them in the random order.
+void brio_hilbert_order(const std::vector<predicates::Point3>& points,
+                        std::vector<std::uint32_t>& ids, int threads = 1,
+                        const HilbertFrame* frame = nullptr);
 // The cube around the first `count` points, as brio_hilbert_order takes it for its points.
 HilbertFrame hilbert_frame(const std::vector<predicates::Point3>& points, std::size_t count,
                            int threads = 1);
