@@ -103,29 +103,38 @@ TEST(ParallelMethods, LockGridSyncHoldsCellsAndWaitsOnlyForHigherIds) {
 // The lock-grid method's give-ups after flips leave the mesh as it was (undo_check.hpp), in the
 // store the method runs on (aliveness in the word beside each record), and let go of every cell:
 // each try finds a random fifth of the cells held by a thread of higher priority (id 1; this one
-// is 2), so that flips are refused after others were written.
+// is 2), so that flips are refused after others were written; uniform and grid points (S44 and
+// S22 flips undone), slots reused after the epochs as in the method.
 TEST(ParallelMethods, LockGridRollbackRestoresTheMeshAfterFlips) {
-  const auto points = generators::generate("uniform", 1500, 7).points;
-  engine::SharedMesh mesh(points);
-  mesh.tets.keep_children(false);
-  mesh.tets.keep_lock_words(true);
-  const LockGrid grid(points, points.size(), 6);
-  const std::uint32_t cells = 6 * 6 * 6;
-  std::atomic<bool> stop{false};
-  ThreadStats stats;
-  LockGridSync sync(mesh, grid, 2, stats, stop);
-  std::mt19937 rng(11);
-  const auto counts =
-      check_give_ups_undo(points, mesh, sync, 500, [&](engine::VertexId v, bool refuse) {
-        for (std::uint32_t cell = 0; cell < cells; ++cell) {
-          // Nothing of this thread's is held between tries: every cell free, or the other's.
-          EXPECT_NE(grid.word(cell).load(), 2u) << cell;
-          grid.word(cell).store(refuse && rng() % 5 == 0 ? 1 : 0);
-        }
-        if (refuse) grid.word(grid.cell_of(v)).store(0);
-      });
-  EXPECT_GT(counts.give_ups, 100);
-  EXPECT_GT(counts.after_flips, 20);
+  for (const std::string family : {"uniform", "grid"}) {
+    const auto points = simplex_first(generators::generate(family, 1500, 7).points);
+    engine::SharedMesh mesh(points);
+    mesh.tets.keep_children(false);
+    mesh.tets.keep_lock_words(true);
+    const LockGrid grid(points, points.size(), 6);
+    const std::uint32_t cells = 6 * 6 * 6;
+    std::atomic<bool> stop{false};
+    ThreadStats stats;
+    LockGridSync sync(mesh, grid, 2, stats, stop);
+    // As the method's threads: dead slots reused after the epochs.
+    engine::EpochDomain epochs(1);
+    engine::SlotReclaimer reclaimer(epochs, 0);
+    std::mt19937 rng(11);
+    const auto counts = check_give_ups_undo(
+        points, mesh, sync, 500,
+        [&](engine::VertexId v, bool refuse) {
+          for (std::uint32_t cell = 0; cell < cells; ++cell) {
+            // Nothing of this thread's is held between tries: every cell free, or the other's.
+            EXPECT_NE(grid.word(cell).load(), 2u) << cell;
+            grid.word(cell).store(refuse && rng() % 5 == 0 ? 1 : 0);
+          }
+          if (refuse) grid.word(grid.cell_of(v)).store(0);
+        },
+        &reclaimer);
+    EXPECT_GT(counts.give_ups, 500) << family;
+    EXPECT_GT(counts.after_flips, 100) << family;
+    if (family == "grid") EXPECT_GT(counts.after_s44_or_s22, 50);
+  }
 }
 
 // Whole runs on grids of 2 and 3 cells per axis, so that the threads meet in cells: the unique

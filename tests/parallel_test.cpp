@@ -944,24 +944,29 @@ TEST(ParallelMethods, PartitionSyncReadsOnlyWhatNoOtherPartWrites) {
 // store the method runs on (aliveness in the record: death overwrites the last vertex, and undo
 // brings it back). Each try has a random fifth of the vertices in another part, so that walks
 // stop, flips are refused, and the outside neighbours that a flip gave back references (never
-// asked for, never logged) are re-glued by the undo; and some of those give-ups came after flips.
+// asked for, never logged) are re-glued by the undo; and some of those give-ups came after flips,
+// on the grid some after S44 and S22 flips.
 TEST(ParallelMethods, PartitionRollbackRestoresTheMeshAfterFlips) {
-  const auto points = generators::generate("uniform", 1500, 7).points;
-  engine::SharedMesh mesh(points);
-  mesh.tets.keep_children(false);
-  mesh.tets.keep_lock_words(false);
-  ASSERT_TRUE(mesh.tets.alive_in_record());
-  std::vector<std::uint8_t> part_of(points.size(), 0);
-  engine::PartitionSync sync(mesh, part_of);
-  std::mt19937 rng(11);
-  const auto counts = check_give_ups_undo(points, mesh, sync, 500, [&](VertexId v, bool refuse) {
-    sync.set_part(0, !refuse);
-    if (!refuse) return;
-    for (std::size_t u = 0; u < v; ++u) part_of[u] = rng() % 5 == 0 ? 1 : 0;
-    part_of[v] = 0;
-  });
-  EXPECT_GT(counts.give_ups, 100);
-  EXPECT_GT(counts.after_flips, 20);
+  for (const std::string family : {"uniform", "grid"}) {
+    const auto points = simplex_first(generators::generate(family, 1500, 7).points);
+    engine::SharedMesh mesh(points);
+    mesh.tets.keep_children(false);
+    mesh.tets.keep_lock_words(false);
+    ASSERT_TRUE(mesh.tets.alive_in_record());
+    std::vector<std::uint8_t> part_of(points.size(), 0);
+    engine::PartitionSync sync(mesh, part_of);
+    std::mt19937 rng(11);
+    const auto counts = check_give_ups_undo(points, mesh, sync, 500, [&](VertexId v, bool refuse) {
+      sync.set_part(0, !refuse);
+      if (!refuse) return;
+      for (std::size_t u = 0; u < v; ++u) part_of[u] = rng() % 5 == 0 ? 1 : 0;
+      part_of[v] = 0;
+    });
+    EXPECT_GT(counts.give_ups, 500) << family;
+    EXPECT_GT(counts.after_flips, 100) << family;
+    // The grid's give-ups also undo S44 and S22 flips (and splits of faces and edges).
+    if (family == "grid") EXPECT_GT(counts.after_s44_or_s22, 50);
+  }
 }
 
 // The partitioned method on small inputs cut into parts of 16 points, so that passes run on

@@ -12,12 +12,30 @@
 #include <string>
 #include <vector>
 
+#include "dtlab/engine/point_set_info.hpp"
 #include "dtlab/engine/triangulate.hpp"
 #include "insertion/inserter.hpp"
 #include "insertion/sync.hpp"
 #include "mesh/shared_mesh.hpp"
+#include "mesh/slot_reclaimer.hpp"
 
 namespace dtlab::test {
+
+// `points` with four affinely independent ones first (check_give_ups_undo's first tetrahedron:
+// a grid's first four points lie in one plane), the others in their order.
+inline std::vector<predicates::Point3> simplex_first(std::vector<predicates::Point3> points) {
+  std::vector<std::uint32_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  const auto simplex = engine::find_simplex(points, order).simplex.value();
+  std::vector<predicates::Point3> reordered;
+  reordered.reserve(points.size());
+  for (const std::uint32_t v : simplex) reordered.push_back(points[v]);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (std::find(simplex.begin(), simplex.end(), i) == simplex.end())
+      reordered.push_back(points[i]);
+  }
+  return reordered;
+}
 
 // Every slot's aliveness and every live record.
 struct StoreSnapshot {
@@ -63,16 +81,19 @@ inline std::string store_difference(const engine::SharedMesh& mesh, const StoreS
 
 struct UndoCounts {
   int give_ups = 0;
-  int after_flips = 0;  // give-ups that undid flips (a split and at least one flip)
+  int after_flips = 0;       // give-ups that undid flips (a split and at least one flip)
+  int after_s44_or_s22 = 0;  // of those, the ones that undid an S44 or S22 (degenerate input)
 };
 
-// Builds the mesh of points [0, built) through `sync` with nothing refused (refuse(v, false)),
-// then tries each further point v once with refuse(v, true) and checks every give-up's undo; v
-// then goes in with refuse(v, false). The store must be set up as the policy's method sets it up.
+// Builds the mesh of points [0, built) through `sync` (points 0 to 3 affinely independent) with
+// nothing refused (refuse(v, false)), then tries each further point v once with refuse(v, true) and
+// checks every give-up's undo; v then goes in with refuse(v, false). The store must be set up as
+// the policy's method sets it up, and `reclaimer` given where the method's threads have one (slots
+// reused after the epochs).
 template <class Sync, class Refuse>
 UndoCounts check_give_ups_undo(const std::vector<predicates::Point3>& points,
                                engine::SharedMesh& mesh, Sync& sync, std::size_t built,
-                               Refuse&& refuse) {
+                               Refuse&& refuse, engine::SlotReclaimer* reclaimer = nullptr) {
   using Dt = engine::IncrementalDelaunay<predicates::AdaptiveKernel, Sync>;
   engine::TriangulateOptions options;
   options.location = engine::Location::Walk;
@@ -83,16 +104,16 @@ UndoCounts check_give_ups_undo(const std::vector<predicates::Point3>& points,
                                                                           start_stats, no_sync)
       .start(0, 1, 2, 3);
   engine::TriangulationStats stats;
-  Dt dt(mesh, options, stats, sync);
+  Dt dt(mesh, options, stats, sync, reclaimer);
   UndoCounts counts;
-  const auto flips = [&stats] {
-    return stats.flips.s23 + stats.flips.s32 + stats.flips.s22 + stats.flips.s44;
-  };
+  const auto degenerate_flips = [&stats] { return stats.flips.s22 + stats.flips.s44; };
+  const auto flips = [&] { return stats.flips.s23 + stats.flips.s32 + degenerate_flips(); };
   for (std::size_t i = 4; i < points.size(); ++i) {
     const auto v = static_cast<engine::VertexId>(i);
     if (i >= built) {
       const StoreSnapshot before = snapshot_of(mesh);
       const std::uint64_t flips_before = flips();
+      const std::uint64_t degenerate_before = degenerate_flips();
       refuse(v, true);
       const auto outcome = dt.insert(v);
       refuse(v, false);
@@ -100,6 +121,7 @@ UndoCounts check_give_ups_undo(const std::vector<predicates::Point3>& points,
       EXPECT_EQ(outcome, Dt::Outcome::GaveUp) << "point " << i;
       ++counts.give_ups;
       if (flips() > flips_before) ++counts.after_flips;
+      if (degenerate_flips() > degenerate_before) ++counts.after_s44_or_s22;
       const std::string difference = store_difference(mesh, before);
       EXPECT_TRUE(difference.empty()) << "point " << i << ": " << difference;
       if (!difference.empty()) return counts;  // the mesh is broken: no use going on
