@@ -5,14 +5,15 @@ medians of each step's seconds, from the runs' own stats (`--stats`), against th
 walk's divided by the threads: what a run with no overhead would take. Nothing else should run
 meanwhile.
 
-Steps: before the first insertion (`seconds.ordering`); the passes of one part before the
-first of several (`partition_passes`, one part, not after the rounds); the setups of the passes
-of several parts (their `setup_seconds`: cut, sort along the pass curve, walk starts); the rest
+Steps: before the first insertion (`seconds.ordering`); the rounds' passes of one part
+(`partition_passes`, one part, not after the rounds: the first, small rounds); the setups of the
+rounds' passes of several parts (their `setup_seconds`: cut, sort along the pass curve, walk starts); the rest
 of those passes during the rounds (their inserting threads); every pass after the rounds; after
 the last insertion (`seconds.output`: the output, the points put back, the input's ids); what is
 left of `seconds.total`. The sequential walk's insertions are its total less its ordering and
 output; its "ideal" row for the insertions is set beside the sum of the partitioned run's four
-insertion rows.
+insertion rows. Each row is a median of its own, so the rows need not add up to the total's
+median exactly.
 
 Usage: tools/time_budget.py DTLAB [--input uniform:1000000] [--threads 2] [--insertion cavity]
          [--rounds 5] [--seed 1]
@@ -34,11 +35,10 @@ def run(binary, args):
 def partitioned_steps(stats):
     s = stats["seconds"]
     passes = stats["partition_passes"]
-    first_parted = next((i for i, p in enumerate(passes) if p["parts"] > 1), len(passes))
     steps = {
         "ordering": s["ordering"],
-        "one-part passes before the first of several":
-            sum(p["seconds"] for p in passes[:first_parted] if not p["after_rounds"]),
+        "the rounds' passes of one part":
+            sum(p["seconds"] for p in passes if p["parts"] == 1 and not p["after_rounds"]),
         "setups of the passes of several parts":
             sum(p["setup_seconds"] for p in passes if p["parts"] > 1 and not p["after_rounds"]),
         "insertions in the rounds' passes of several parts":
@@ -88,7 +88,7 @@ def main():
     print()
     print("| step | partitioned (s) | sequential / threads (s) | over (ms) |")
     print("|---|---:|---:|---:|")
-    insert_rows = ["one-part passes before the first of several",
+    insert_rows = ["the rounds' passes of one part",
                    "setups of the passes of several parts",
                    "insertions in the rounds' passes of several parts", "passes after the rounds"]
     print(f"| ordering | {par['ordering']:.3f} | {seq['ordering'] / t:.3f} | "
@@ -105,7 +105,7 @@ def main():
           f"**{1e3 * (par['total'] - seq['total'] / t):.0f}** |")
     print()
     print(f"sequential walk {seq['total']:.3f} s; speedup {seq['total'] / par['total']:.3f}x "
-          f"(ratio of the medians)")
+          f"(ratio of the medians); each row a median of its own")
 
 
 if __name__ == "__main__":
