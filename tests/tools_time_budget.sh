@@ -5,7 +5,7 @@
 # rounds, the output), its "all insertions" row is the sum of the four insertion rows, the steps
 # leave at most a quarter of the run's total unaccounted (a loose bound: the rest is about 2 %,
 # and a busy machine must not fail the test), each "over" cell is the partitioned cell less the
-# sequential one, and the sequential column is the sequential walk's own divided by the threads:
+# sequential one, a speedup is listed for each of the 3 rounds, and the sequential column is the sequential walk's own divided by the threads:
 # runs of it beside take within a third of the threads times that column's total.
 set -euo pipefail
 dtlab="$1"
@@ -34,6 +34,8 @@ assert set(ideal) == {"ordering", "all insertions (the four rows above)", "outpu
 for k in ideal:
     assert abs(1e3 * (rows[k] - ideal[k]) - over[k]) < 2, (k, rows[k], ideal[k], over[k])
 assert re.search(r"speedup [0-9.]+x", sys.argv[1])
+per_round = re.search(r"speedup per round: ([0-9., ]+); median ([0-9.]+)", sys.argv[1])
+assert per_round and len(per_round.group(1).split(",")) == 3, "no speedup for each of the 3 rounds"
 print(ideal["total"])
 PY
 )

@@ -2,8 +2,9 @@
 """Where a partitioned run's time goes, beside the sequential walk's on the same points: both
 run alternately (`--rounds` times each, each run its own process), and the table gives the
 medians of each step's seconds, from the runs' own stats (`--stats`), against the sequential
-walk's divided by the threads: what a run with no overhead would take. Nothing else should run
-meanwhile.
+walk's divided by the threads: what a run with no overhead would take; then the speedup of each
+round (the sequential walk's total over the partitioned run's, the two run one after the other).
+Nothing else should run meanwhile.
 
 Steps: before the first insertion (`seconds.ordering`); the rounds' passes of one part
 (`partition_passes`, one part, not after the rounds: the first, small rounds); the setups of the
@@ -106,6 +107,10 @@ def main():
     print()
     print(f"sequential walk {seq['total']:.3f} s; speedup {seq['total'] / par['total']:.3f}x "
           f"(ratio of the medians); each row a median of its own")
+    # Each round's two runs ran one after the other: their ratio, round by round.
+    paired = [one["total"] / two["total"] for one, two in zip(seq_runs, par_runs)]
+    print(f"speedup per round: {', '.join(f'{x:.3f}' for x in paired)}; "
+          f"median {statistics.median(paired):.3f}")
 
 
 if __name__ == "__main__":
