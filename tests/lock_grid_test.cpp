@@ -133,7 +133,9 @@ TEST(ParallelMethods, LockGridRollbackRestoresTheMeshAfterFlips) {
         &reclaimer);
     EXPECT_GT(counts.give_ups, 500) << family;
     EXPECT_GT(counts.after_flips, 100) << family;
-    if (family == "grid") EXPECT_GT(counts.after_s44_or_s22, 50);
+    if (family == "grid") {
+      EXPECT_GT(counts.after_s44_or_s22, 50);
+    }
   }
 }
 

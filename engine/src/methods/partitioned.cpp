@@ -35,7 +35,8 @@
 namespace dtlab::engine {
 namespace {
 
-// Passes after the last round that may still use several parts; then one part inserts the rest.
+// Passes after the last round that may still use several parts, besides one for each halving of
+// their parts (run()); then one part inserts the rest.
 constexpr int kFinalParallelPasses = 3;
 // Keys sampled to place the cuts.
 constexpr std::size_t kCutSample = 4096;
@@ -138,19 +139,26 @@ class PartitionedRun {
       append_in_order(pending, carried);
       carried = pass(pending, begin, parts_for(pending.size(), run_.options), PassKind::Round);
     }
-    bool several_parts_pay = true;
+    // After a pass that gave up a third of its points or more, the next has half its parts: the
+    // points left lie where the parts met (at 16 parts their borders hold about a quarter of a
+    // part's points), and fewer parts have less border; or they are the hull's, whose cavities
+    // spread over its flat faces, which some cut crosses whatever the curve: two parts halve to
+    // one. (Going to one thread at once left it an eighth of uniform:1000000 and a third of
+    // dragon_vrip at 16 threads: performance-log.md, eighteenth session.)
+    int most_parts = run_.threads;
+    int halvings = 0;
     for (int final_pass = 0; !carried.empty(); ++final_pass) {
-      const int parts = several_parts_pay && final_pass < kFinalParallelPasses
-                            ? parts_for(carried.size(), run_.options)
+      const int parts = final_pass < kFinalParallelPasses + halvings
+                            ? std::min(most_parts, parts_for(carried.size(), run_.options))
                             : 1;
       std::vector<std::uint32_t> pending;
       append_in_order(pending, carried);
       carried = pass(pending, run_.order.size(), parts, PassKind::Final);
-      // After a pass that gave up a third of its points or more, the next, with fewer and harder
-      // points (the hull's, whose cavities spread over its flat faces, which some cut crosses
-      // whatever the curve), would give up most: one thread does them and the rest sooner.
       const PartitionPass& last = run_.stats.partition_passes.back();
-      several_parts_pay = several_parts_pay && 3 * last.postponed < last.points;
+      if (parts > 1 && 3 * last.postponed >= last.points) {
+        most_parts = parts / 2;
+        ++halvings;
+      }
     }
     for (int i = 0; i < run_.threads; ++i) {
       run_.finish_thread(i, inserters_[static_cast<std::size_t>(i)]->dt);
