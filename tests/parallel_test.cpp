@@ -976,10 +976,10 @@ TEST(ParallelMethods, PartitionRollbackRestoresTheMeshAfterFlips) {
 // exact kernels, nothing abandoned, every postponed or deferred point inserted by a later pass
 // (the last pass leaves none; each point but the first four is tried to the end in exactly one
 // pass: the passes' points less those carried on add up to them, and the duplicates found are
-// the sequential run's), the passes after the rounds last, never deferring, and on one thread
-// after one of them postponed a third of its points, and the postponement taken with both
-// insertions (for the flips that is an undo when the refusal comes after a write), some of them
-// by walks stopped at a part's border.
+// the sequential run's), the passes after the rounds last, never deferring, and on at most half
+// the parts of one that postponed a third of its points (at 4 threads some ran on 2), and the
+// postponement taken with both insertions (for the flips that is an undo when the refusal comes
+// after a write), some of them by walks stopped at a part's border.
 TEST(ParallelMethods, PartitionedPostponesAcrossCutsAndGivesTheUniqueMesh) {
   std::uint64_t postponed[2] = {0, 0};
   std::uint64_t stopped_walks[2] = {0, 0};
