@@ -93,10 +93,14 @@ int run_methods() {
   std::printf("| method | what it does | threads | location | insertion | post-check |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (const engine::MethodInfo& m : engine::methods()) {
-    const std::string threads = !m.parallel ? "1"
-                                : m.min_threads > 1
-                                    ? "T (at least " + std::to_string(m.min_threads) + ")"
-                                    : "T";
+    std::string threads = "T";
+    if (!m.parallel) {
+      threads = "1";
+    } else if (m.min_threads > 1) {
+      threads = "T (at least " + std::to_string(m.min_threads) + ")";
+    } else if (m.spins) {
+      threads = "T (at most " + std::to_string(engine::kSpinningThreadsPerCpu) + " a CPU)";
+    }
     std::printf("| `%s` | %s | %s | %s | %s | %s |\n", m.name, m.summary, threads.c_str(),
                 either(m.dag, m.walk, "dag", "walk").c_str(),
                 either(m.flips, m.cavity, "flips", "cavity").c_str(), m.post_check ? "yes" : "-");
@@ -140,19 +144,19 @@ int run_triangulate(const TriangulateArgs& args) {
     throw std::invalid_argument(std::string("the ") + engine::to_string(args.options.method) +
                                 " method runs on one thread (--threads 1)");
   }
-  // What the engine refuses, refused before the input is read.
-  if (const auto why = engine::unsupported(args.options)) throw std::invalid_argument(*why);
   if (args.threads < 1 || args.threads > 1024) {
     throw std::invalid_argument("--threads must be in [1, 1024]");
   }
+  engine::TriangulateOptions options = args.options;
+  options.threads = args.threads;
+  // What the engine refuses, refused before the input is read.
+  if (const auto why = engine::unsupported(options)) throw std::invalid_argument(*why);
   check_mesh_output(args.output);
   if (args.output.canonical && args.validate && ends_with(args.output.path, ".vtu")) {
     throw std::invalid_argument(
         "--canonical with --validate -o FILE.vtu: the non_delaunay cell array follows the "
         "engine's order; write .ele, or validate without --canonical");
   }
-  engine::TriangulateOptions options = args.options;
-  options.threads = args.threads;
   // Moved in, handed back: one copy of the points at the run's peak.
   const engine::Triangulation result =
       engine::triangulate(load_input(args.input, args.options.seed), options);

@@ -46,6 +46,21 @@ expect 2 "--method lock-grid needs --location walk: its undo log keeps no DAG ch
 expect 2 "--method partitioned needs --location walk" -- triangulate "uniform:100" --method partitioned --threads 2 --paper
 expect 2 "need -o FILE" -- triangulate "uniform:100" --neighbors
 expect 2 "--vtu: Check" -- triangulate "uniform:100" -o "$dir/x.vtu" --vtu base32
+# More threads than the CPUs available can serve, for a method whose waits spin (docs/design.md,
+# "Threads a CPU"): refused before the run, which took minutes or stalled.
+cpus=$(nproc)
+if [ $((32 * cpus + 1)) -le 1024 ]; then
+  expect 2 "at most $((32 * cpus)) here (32 a CPU, $cpus CPU" -- triangulate "uniform:100" --method optimistic-detect --threads $((32 * cpus + 1))
+fi
+# The CPUs are the affinity mask's: on one CPU, 33 threads are too many.
+if command -v taskset >/dev/null && taskset -c 0 true 2>/dev/null; then
+  out=$(timeout 60 taskset -c 0 "$dtlab" triangulate "uniform:100" --method lock-grid --threads 33 2>&1 >/dev/null)
+  got=$?
+  if [ "$got" -ne 2 ] || ! grep -qF "at most 32 here (32 a CPU, 1 CPU available)" <<<"$out"; then
+    echo "FAIL: taskset -c 0 dtlab ... --method lock-grid --threads 33 -> exit $got, stderr: $out"
+    failures=$((failures + 1))
+  fi
+fi
 if ls "$dir"/out.* "$dir"/taken.ele.tmp-* >/dev/null 2>&1; then echo "FAIL: an output file was left behind"; failures=$((failures + 1)); fi
 echo "cli_bad_input: $failures failures"
 [ "$failures" -eq 0 ]

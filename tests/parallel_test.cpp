@@ -36,6 +36,7 @@
 #include "methods/optimistic_detect.hpp"
 #include "methods/optimistic_prevent.hpp"
 #include "methods/partition_sync.hpp"
+#include "support/cpus_available.hpp"
 #include "undo_check.hpp"
 #include "validator_recount.hpp"
 
@@ -1180,6 +1181,35 @@ TEST(ParallelMethods, WalkOnlyMethodsRefuseTheDagModeWithTheReason) {
     EXPECT_NE(why->find(reason), std::string::npos) << *why;
     EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument);
   }
+}
+
+// The methods whose waiting threads spin refuse more than kSpinningThreadsPerCpu threads a CPU
+// available, with the reason; the others take any count, and the spinning ones take the limit.
+TEST(ParallelMethods, SpinningMethodsRefuseMoreThreadsThanTheCpusServe) {
+  const auto points = generators::generate("uniform", 100, 1).points;
+  const int most = engine::kSpinningThreadsPerCpu * engine::cpus_available();
+  int spinning = 0;
+  for (const engine::MethodInfo& info : engine::methods()) {
+    if (!info.parallel) continue;
+    engine::TriangulateOptions options;
+    options.method = info.method;
+    options.location = engine::Location::Walk;
+    options.threads = most + 1;
+    const auto why = engine::unsupported(options);
+    if (!info.spins) {
+      EXPECT_FALSE(why.has_value()) << info.name << ": " << *why;
+      continue;
+    }
+    ++spinning;
+    ASSERT_TRUE(why.has_value()) << info.name;
+    EXPECT_NE(why->find("at most " + std::to_string(most) + " here"), std::string::npos) << *why;
+    EXPECT_NE(why->find("CPUs available"), std::string::npos) << *why;
+    EXPECT_THROW((void)engine::triangulate(points, options), std::invalid_argument) << info.name;
+    options.threads = most;
+    EXPECT_FALSE(engine::unsupported(options).has_value()) << info.name;
+  }
+  // optimistic-detect, optimistic-prevent, burglary, lock-grid.
+  EXPECT_EQ(spinning, 4);
 }
 
 TEST(ParallelMethods, FindCycleConfirmsOnlyRealCycles) {

@@ -131,7 +131,8 @@ def triangulate(points, *, predicates="adaptive", method="sequential", threads=1
     configuration (`dtlab triangulate`'s: walk location, cavity insertion); location="dag" is the
     paper's (its insertion, flips, is the default there, as with the CLI's --location dag).
     predicates  "adaptive" | "filtered" | "exact" (GMP) | "fast" (plain doubles: can fail)
-    method      "sequential" or a parallel method (dtlab methods), with `threads` threads
+    method      "sequential" or a parallel method (dtlab methods), with `threads` threads (1 to
+                1024; the methods whose waits spin, at most 32 a CPU available: ValueError)
     repair      None, True ("splay": star splaying after the run, exact), "flips-splay", or
                 burglary's post-check "flips" / "rebuild"
     progress    True draws a bar on stderr; a callable receives (done, total) ten times a second

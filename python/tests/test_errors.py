@@ -112,6 +112,19 @@ def test_bad_options_raise(options, message):
         dtlab.triangulate(points, **options)
 
 
+def test_more_threads_than_the_cpus_serve_raise():
+    # A method whose waiting threads spin runs at most 32 threads a CPU available (docs/design.md,
+    # "Threads a CPU"); the partitioned method, which never waits, takes the same count.
+    cpus = len(os.sched_getaffinity(0))
+    if 32 * cpus + 1 > 1024:
+        pytest.skip("more than 31 CPUs: the count would pass the 1024-thread limit")
+    points = np.random.default_rng(2).random((50, 3))
+    with pytest.raises(ValueError, match=rf"at most {32 * cpus} here"):
+        dtlab.triangulate(points, method="burglary", threads=32 * cpus + 1)
+    result = dtlab.triangulate(points, method="partitioned", threads=32 * cpus + 1)
+    assert len(result.simplices) > 0
+
+
 def test_bad_simplices_raise():
     points = np.random.default_rng(2).random((10, 3))
     for simplices, message in [([[0, 1, 2, 10]], r"vertex ids in \[0, 10\)"),

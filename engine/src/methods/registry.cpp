@@ -4,9 +4,11 @@
 
 #include <array>
 #include <stdexcept>
+#include <string>
 
 #include "dtlab/engine/methods.hpp"
 #include "location/location_policy.hpp"
+#include "support/cpus_available.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -19,25 +21,25 @@ struct MethodEntry {
 // clang-format off
 const std::array kMethods{
   //          method                     name                  summary
-  //          parallel min_threads dag walk flips cavity post_check   run
+  //          parallel min_threads dag walk flips cavity post_check spins   run
   MethodEntry{{Method::Sequential,        "sequential",         "one thread, no locks: the baseline",
-               false, 1, true, true, true, true, false},  &run_sequential},
+               false, 1, true, true, true, true, false, false},  &run_sequential},
   MethodEntry{{Method::Pessimistic,       "pessimistic",        "lock-free location, then each insertion inside one global critical section (paper Sect. 5)",
-               true,  1, true, true, true, true, false},  &run_pessimistic},
+               true,  1, true, true, true, true, false, false},  &run_pessimistic},
   MethodEntry{{Method::OptimisticDetect,  "optimistic-detect",  "per-tetrahedron locks; a wait that closes a cycle gives its insertion up by the undo log (paper Sect. 5)",
-               true,  1, true, true, true, true, false},  &run_optimistic_detect},
+               true,  1, true, true, true, true, false, true},  &run_optimistic_detect},
   MethodEntry{{Method::OptimisticPrevent, "optimistic-prevent", "per-tetrahedron locks; never wait for a higher priority while holding a lock (paper Sect. 5)",
-               true,  1, true, true, true, true, false},  &run_optimistic_prevent},
+               true,  1, true, true, true, true, false, true},  &run_optimistic_prevent},
   MethodEntry{{Method::Burglary,          "burglary",           "per-tetrahedron locks, no undo: a deadlock is broken by taking the victim's locks, then a sequential post-check (paper Sect. 5)",
-               true,  1, true, true, true, true, true},   &run_burglary},
+               true,  1, true, true, true, true, true, true},   &run_burglary},
   MethodEntry{{Method::Batch,             "batch",              "T - 1 threads locate without locks, one thread inserts what they found (described in the paper, built here)",
-               true,  2, true, true, true, true, false},  &run_batch},
+               true,  2, true, true, true, true, false, false},  &run_batch},
   MethodEntry{{Method::Partitioned,       "partitioned",        "no locks: each pass cuts a Hilbert curve through the points into one part a thread; an insertion that reaches another part waits for a pass whose curve and cuts differ (Marot, Pellerin, Remacle 2019)",
-               true,  1, false, true, true, true, false,
+               true,  1, false, true, true, true, false, false,
                "its passes insert in the curve's order, not the random order the DAG's expected cost rests on, and it reuses dead slots, which the DAG keeps"},
                &run_partitioned},
   MethodEntry{{Method::LockGrid,          "lock-grid",          "a lock a cell of a spatial grid: a thread holds the cells of the vertices of what it changes; the lower thread id waits, the higher gives its insertion up by an undo log (after CGAL's Spatial_lock_grid_3 idea)",
-               true,  1, false, true, true, true, false,
+               true,  1, false, true, true, true, false, true,
                "its undo log keeps no DAG children, and it reuses dead slots, which the DAG keeps"},
                &run_lock_grid},
 };
@@ -99,6 +101,18 @@ std::optional<std::string> unsupported(const TriangulateOptions& options) {
   if ((options.repair == Repair::Flips || options.repair == Repair::Rebuild) && !info.post_check) {
     return "--repair=flips and --repair=rebuild are the burglary method's post-check (--method "
            "burglary); --repair (star splaying) works with every method";
+  }
+  if (info.spins) {
+    const int cpus = cpus_available();
+    const int most = kSpinningThreadsPerCpu * cpus;
+    if (options.threads > most) {
+      return method + " at " + std::to_string(options.threads) + " threads: at most " +
+             std::to_string(most) + " here (" + std::to_string(kSpinningThreadsPerCpu) +
+             " a CPU, " + std::to_string(cpus) + (cpus == 1 ? " CPU" : " CPUs") +
+             " available): its threads spin while they wait for a lock holder, which then "
+             "gets a CPU too late (runs took minutes or stalled; docs/design.md, \"Threads a "
+             "CPU\")";
+    }
   }
   if (options.insertion == Insertion::Cavity && resolve_location(options.location).history) {
     // A cavity's tetrahedra have more successors than the history DAG's four children.

@@ -24,6 +24,8 @@ struct MethodInfo {
   bool flips;           // supports --insertion flips
   bool cavity;          // supports --insertion cavity
   bool post_check;      // has the paper's post-check: --repair=flips and --repair=rebuild
+  bool spins;           // a thread that finds a lock taken spins and yields until its holder lets
+                        // go: at most kSpinningThreadsPerCpu threads a CPU (unsupported())
   const char* walk_only_because = nullptr;  // why a method without dag needs the walk mode
 };
 
@@ -34,10 +36,18 @@ std::optional<Method> method_named(std::string_view name);
 // "sequential | pessimistic | ...": every method's name, for help texts.
 std::string method_names();
 
+// The most threads a CPU available to the process (cpus_available) that a method whose waits spin
+// (MethodInfo::spins) is given. Its waiters take the CPUs from the holders they wait for, which
+// get a turn only after every spinning thread has had one: on 2 CPUs, optimistic-detect and
+// burglary took seconds at 64 threads and minutes (or were stopped by the watchdog) at 200 to
+// 1,000, lock-grid and optimistic-prevent at 1,000 (uniform:20000 and uniform:200000;
+// docs/performance-log.md, nineteenth session).
+inline constexpr int kSpinningThreadsPerCpu = 32;
+
 // Why the engine cannot run `options` (a message for the user), or nothing: a location or
 // insertion the method does not support, a post-check repair for a method without one, cavity
-// insertion where the location mode keeps a history DAG. triangulate() throws
-// std::invalid_argument with it.
+// insertion where the location mode keeps a history DAG, more threads than a method that spins
+// runs on the CPUs available. triangulate() throws std::invalid_argument with it.
 std::optional<std::string> unsupported(const TriangulateOptions& options);
 
 }  // namespace dtlab::engine
