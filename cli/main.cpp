@@ -116,8 +116,9 @@ int main(int argc, char** argv) {
   tri->add_option("--threads", targs.threads,
                   "worker threads, 1 to 1024 (batch: T - 1 locating threads and one inserting "
                   "thread, at least one of each, so --threads 1 runs two; optimistic-detect, "
-                  "optimistic-prevent, burglary and lock-grid: at most 32 a CPU available, as "
-                  "their waiting threads spin)");
+                  "optimistic-prevent, burglary and lock-grid: at most " +
+                      std::to_string(dtlab::engine::kSpinningThreadsPerCpu) +
+                      " a CPU available, as their waiting threads spin)");
   tri->add_option("--distribution", targs.options.distribution,
                   "static | dynamic | strips | blocks | auto (default: static with --location "
                   "dag, as in the paper; blocks with --location walk, so that threads work apart)")

@@ -48,9 +48,11 @@ expect 2 "need -o FILE" -- triangulate "uniform:100" --neighbors
 expect 2 "--vtu: Check" -- triangulate "uniform:100" -o "$dir/x.vtu" --vtu base32
 # More threads than the CPUs available can serve, for a method whose waits spin (docs/design.md,
 # "Threads a CPU"): refused before the run, which took minutes or stalled.
-cpus=$(nproc)
+# The CPUs as the engine counts them (the affinity mask; nproc may also follow OMP_NUM_THREADS).
+cpus=$(python3 -c "import os; print(len(os.sched_getaffinity(0)))")
 if [ $((32 * cpus + 1)) -le 1024 ]; then
   expect 2 "at most $((32 * cpus)) here (32 a CPU, $cpus CPU" -- triangulate "uniform:100" --method optimistic-detect --threads $((32 * cpus + 1))
+  expect 2 "--threads $((32 * cpus + 1)): at most $((32 * cpus)) here" -- experiment speedup --quick --threads $((32 * cpus + 1)) --out "$dir/study"
 fi
 # The CPUs are the affinity mask's: on one CPU, 33 threads are too many.
 if command -v taskset >/dev/null && taskset -c 0 true 2>/dev/null; then

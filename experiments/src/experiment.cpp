@@ -17,6 +17,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "dtlab/engine/methods.hpp"
 #include "dtlab/generators/generators.hpp"
 #include "dtlab/io/point_readers.hpp"
 #include "machine_record.hpp"
@@ -128,8 +129,20 @@ StudyParams resolve(const Study& study, const ExperimentOptions& options) {
                           ? options.timeout_seconds
                           : (options.quick ? d.quick_timeout_seconds : d.timeout_seconds);
   resolve_tools(study, options, p);
+  // The methods whose waits spin refuse more threads than the CPUs serve (docs/design.md, "Threads
+  // a CPU"); a study refuses the count rather than plan runs that would differ from machine to
+  // machine.
+  const int spinning_most = engine::kSpinningThreadsPerCpu * static_cast<int>(p.hardware_threads);
   for (const int t : p.threads) {
     if (t < 1 || t > 1024) throw std::invalid_argument("--threads: each count in [1, 1024]");
+    if (t > spinning_most) {
+      throw std::invalid_argument(
+          "--threads " + std::to_string(t) + ": at most " + std::to_string(spinning_most) +
+          " here, the most that optimistic-detect, optimistic-prevent, burglary and lock-grid run "
+          "on the " +
+          std::to_string(p.hardware_threads) + " CPUs available (" +
+          std::to_string(engine::kSpinningThreadsPerCpu) + " a CPU)");
+    }
   }
   for (const std::int64_t n : p.sizes) {
     if (n < 1 || n > generators::kMaxPoints) throw std::invalid_argument("--sizes: out of range");

@@ -2,8 +2,6 @@
 
 #include <sys/utsname.h>
 
-#include <sched.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -14,6 +12,8 @@
 #include <set>
 #include <thread>
 #include <utility>
+
+#include "dtlab/engine/methods.hpp"
 
 namespace dtlab::experiments {
 namespace {
@@ -119,12 +119,7 @@ std::string short_commit(const std::string& commit) {
 }
 
 unsigned available_cpus() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) == 0) {
-    return std::max(1, CPU_COUNT(&set));
-  }
-  return std::max(1U, std::thread::hardware_concurrency());
+  return static_cast<unsigned>(engine::cpus_available());
 }
 
 std::string machine_line() {

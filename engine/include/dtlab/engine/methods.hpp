@@ -36,12 +36,16 @@ std::optional<Method> method_named(std::string_view name);
 // "sequential | pessimistic | ...": every method's name, for help texts.
 std::string method_names();
 
-// The most threads a CPU available to the process (cpus_available) that a method whose waits spin
+// The CPUs this process may run on: its affinity mask's (taskset and a container's cpuset narrow
+// it; a CPU-time quota is not seen), or the machine's logical CPUs where there is no mask to read.
+int cpus_available();
+
+// The most threads a CPU available to the process that a method whose waits spin
 // (MethodInfo::spins) is given. Its waiters take the CPUs from the holders they wait for, which
-// get a turn only after every spinning thread has had one: on 2 CPUs, optimistic-detect and
-// burglary took seconds at 64 threads and minutes (or were stopped by the watchdog) at 200 to
-// 1,000, lock-grid and optimistic-prevent at 1,000 (uniform:20000 and uniform:200000;
-// docs/performance-log.md, nineteenth session).
+// get a turn only after the waiters: on 2 CPUs all four finished uniform:20000 and
+// uniform:200000 in under 2 s at 64 threads, while at 256 optimistic-detect ran past 45 s and
+// lock-grid took 27 s, and at 1,024 all four ran past 45 s on uniform:200000 (docs/design.md,
+// "Threads a CPU"). Measured on 2 CPUs only.
 inline constexpr int kSpinningThreadsPerCpu = 32;
 
 // Why the engine cannot run `options` (a message for the user), or nothing: a location or

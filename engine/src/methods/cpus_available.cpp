@@ -1,7 +1,8 @@
-#include "support/cpus_available.hpp"
-
+// cpus_available() (dtlab/engine/methods.hpp).
 #include <algorithm>
 #include <thread>
+
+#include "dtlab/engine/methods.hpp"
 
 #if defined(__linux__)
 #include <sched.h>
