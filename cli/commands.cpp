@@ -21,6 +21,16 @@
 namespace dtlab::cli {
 namespace {
 
+// Writes `text` to `path`: a file that cannot be opened, or a write that fails (a full disk,
+// /dev/full), is an error, not stats silently lost.
+void write_text_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(path + ": writing failed (is the disk full?)");
+}
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -189,9 +199,7 @@ int run_triangulate(const TriangulateArgs& args) {
     std::cout << json << "\n";
   } else {
     if (!args.stats.empty()) {
-      std::ofstream out(args.stats);
-      if (!out) throw std::runtime_error(args.stats + ": cannot open for writing");
-      out << json << "\n";
+      write_text_file(args.stats, json + "\n");
     }
     const auto& s = result.stats;
     std::printf(
@@ -353,9 +361,7 @@ int run_repair(const std::string& points_path, const std::string& mesh, const Me
     std::cout << j.dump(2) << "\n";
   } else {
     if (!stats_path.empty()) {
-      std::ofstream out(stats_path);
-      if (!out) throw std::runtime_error(stats_path + ": cannot open for writing");
-      out << j.dump(2) << "\n";
+      write_text_file(stats_path, j.dump(2) + "\n");
     }
     std::printf(
         "repaired %zu tetrahedra on %zu points into the Delaunay tetrahedralization: %zu "

@@ -2,8 +2,10 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <map>
 #include <string>
 
@@ -15,6 +17,26 @@
 #include "dtlab/io/input_error.hpp"
 
 namespace {
+
+// A finite number at least 0: CLI::NonNegativeNumber lets "nan" through.
+const CLI::Validator kFiniteNonNegative(
+    [](std::string& text) -> std::string {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0) {
+        return "Value " + text + " is not a finite number at least 0";
+      }
+      return {};
+    },
+    "FLOAT:FINITE >= 0");
+
+// An unsigned integer option's text without a sign: CLI11 reads "-1" into a std::uint64_t as
+// 2^64 - 1, which would run silently with another seed or flip bound than asked for.
+const CLI::Validator kNoMinusSign(
+    [](std::string& text) -> std::string {
+      if (text.find('-') != std::string::npos) return "Value " + text + " is negative";
+      return {};
+    },
+    "");
 
 // --threads for a command whose result is the same for every count (default: one per hardware
 // thread).
@@ -51,9 +73,8 @@ void add_mesh_output_options(CLI::App* command, dtlab::cli::MeshOutput& output) 
                     "orientation kept, then sorted), so that runs compare with diff");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line's work; main() adds the check of standard output.
+int run_command_line(int argc, char** argv) {
   using dtlab::engine::Bounding;
   using dtlab::engine::KernelKind;
   CLI::App app{"dtlab: a testbed for parallel 3D Delaunay triangulation with robust predicates"};
@@ -74,13 +95,13 @@ int main(int argc, char** argv) {
   auto* generate = app.add_subcommand("generate", "write a generated point set (.xyz or .node)");
   generate->add_option("DIST", family, "distribution (uniform, grid, sphere, ...)")->required();
   generate->add_option("N", count, "number of points asked for")->required();
-  generate->add_option("--seed", seed, "random seed");
+  generate->add_option("--seed", seed, "random seed")->check(kNoMinusSign);
   generate->add_option("-o,--output", output, "output file (.xyz or .node)")->required();
 
   std::string input;
   auto* info = app.add_subcommand("info", "facts about a point set: counts, duplicates, dimension");
   info->add_option("INPUT", input, "point file or generator spec (e.g. uniform:1000)")->required();
-  info->add_option("--seed", seed, "seed for a generator spec");
+  info->add_option("--seed", seed, "seed for a generator spec")->check(kNoMinusSign);
 
   dtlab::cli::TriangulateArgs targs;
   // The fastest exact configuration by default (docs/performance.md); --paper for the paper's.
@@ -167,7 +188,8 @@ int main(int argc, char** argv) {
       ->excludes(insertion_option);
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
       ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
-  tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed");
+  tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed")
+      ->check(kNoMinusSign);
   add_mesh_output_options(tri, targs.output);
   tri->add_option("--stats", targs.stats, "write stats JSON to FILE, or - for stdout");
   tri->add_flag("--validate", targs.validate, "check the result with the exact validator");
@@ -180,9 +202,10 @@ int main(int argc, char** argv) {
   tri->add_option("--watchdog", targs.options.watchdog_seconds,
                   "parallel methods: stop and fail a run in which no insertion finished for this "
                   "many seconds (default 0: 10 s + 100 us per point, at most 60 s)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFiniteNonNegative);
   tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
-                  "flip bound per insertion (abandon beyond)");
+                  "flip bound per insertion (abandon beyond)")
+      ->check(kNoMinusSign);
 
   std::string points_path;
   std::string mesh_path;
@@ -261,7 +284,7 @@ int main(int argc, char** argv) {
       ->add_option("--timeout", eopts.timeout_seconds,
                    "seconds after which a run is killed and recorded as timed out (default: the "
                    "study's; peers 60, 20 with --quick; the others none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFiniteNonNegative);
   experiment
       ->add_option("--tools", eopts.tools,
                    "peers: the tools to run (default all): cgal-epick, cgal-doubles, qhull-Qt, "
@@ -277,7 +300,7 @@ int main(int argc, char** argv) {
   auto* audit =
       app.add_subcommand("predicates-audit", "predicate calls per stage while triangulating INPUT");
   audit->add_option("INPUT", input, "point file or generator spec")->required();
-  audit->add_option("--seed", seed, "seed");
+  audit->add_option("--seed", seed, "seed")->check(kNoMinusSign);
   audit->add_option("--predicates", audit_kernel, "fast | adaptive | filtered | exact")
       ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
 
@@ -360,4 +383,18 @@ int main(int argc, char** argv) {
     return 2;
   }
   return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int code = run_command_line(argc, argv);
+  // A write to standard output that failed (a full disk, a closed pipe's reader gone, /dev/full)
+  // lost what the command printed: the stats JSON of --stats -, the tables. Not a success.
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
+    std::fprintf(stderr, "dtlab: error: writing to standard output failed\n");
+    return 2;
+  }
+  return code;
 }

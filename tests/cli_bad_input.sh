@@ -40,7 +40,25 @@ expect 2 "--predicates: Check nosuch value in {adaptive" -- triangulate "uniform
 expect 2 "--predicates: Check nosuch value in {adaptive" -- predicates-audit "uniform:100" --predicates nosuch
 expect 2 "not in {splay,flips-splay,flips,rebuild}" -- triangulate "uniform:100" --method burglary --repair=bogus
 expect 2 "post-check" -- triangulate "uniform:100" --repair=flips
-expect 2 "--watchdog: Value -1 not in range 0" -- triangulate "uniform:100" --watchdog -1
+expect 2 "--watchdog: Value -1 is not a finite number at least 0" -- triangulate "uniform:100" --watchdog -1
+expect 2 "--watchdog: Value nan is not a finite number at least 0" -- triangulate "uniform:100" --watchdog nan
+expect 2 "--timeout: Value nan is not a finite number at least 0" -- experiment speedup --quick --timeout nan --out "$dir/study"
+# An unsigned option given a negative number: CLI11 read -1 as 2^64 - 1 and ran with it.
+expect 2 "--seed: Value -1 is negative" -- triangulate "uniform:100" --seed -1
+expect 2 "--seed: Value -1 is negative" -- generate uniform 10 --seed -1 -o "$dir/out.xyz"
+expect 2 "--max-flips: Value -1 is negative" -- triangulate "uniform:100" --max-flips -1
+# Output that could not be written is an error, not stats silently lost (exit 0 until 2026-11-30).
+if [ -w /dev/full ]; then
+  expect 2 "/dev/full: writing failed" -- triangulate "uniform:100" --stats /dev/full
+  out=$(timeout 60 "$dtlab" triangulate "uniform:100" --stats - 2>&1 >/dev/full)
+  got=$?
+  if [ "$got" -ne 2 ] || ! grep -qF "writing to standard output failed" <<<"$out"; then
+    echo "FAIL: dtlab triangulate uniform:100 --stats - >/dev/full -> exit $got, stderr: $out"
+    failures=$((failures + 1))
+  fi
+fi
+mkdir -p "$dir/folder.xyz"
+expect 2 "folder.xyz: is a directory" -- triangulate "$dir/folder.xyz"
 expect 2 "--grid-cells: Value 0 not in range 1 to 256" -- triangulate "uniform:100" --method lock-grid --location walk --grid-cells 0
 expect 2 "--method lock-grid needs --location walk: its undo log keeps no DAG children" -- triangulate "uniform:100" --method lock-grid --location dag
 expect 2 "--method partitioned needs --location walk" -- triangulate "uniform:100" --method partitioned --threads 2 --paper

@@ -273,6 +273,47 @@ void expect_error(const std::string& file, const std::string& fragment) {
   }
 }
 
+// The header ends at its end_header line, not at the words in a comment before it (the file was
+// refused as having no vertex element until 2026-11-30); a binary body that holds the words is
+// read as numbers.
+TEST_F(IoTest, PlyHeaderEndsAtItsEndHeaderLineNotAtTheWords) {
+  write("c.ply",
+        "ply\nformat ascii 1.0\ncomment written before end_header here\nelement vertex 2\n"
+        "property float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n4 5 6\n");
+  const auto p = io::read_points(path("c.ply"));
+  ASSERT_EQ(p.size(), 2U);
+  EXPECT_EQ(p[1].x, 4);
+  // ply_header's elements: a face (a uchar count 3, three ints), then a vertex's x, y (doubles),
+  // red (a uchar) and z; x's eight bytes are "end_head".
+  const std::string x_bytes = "end_head";
+  write("w.ply", ply_header("binary_little_endian", 1, "double") + std::string(1, '\x03') +
+                     std::string(12, '\0') + x_bytes + std::string(8 + 1 + 8, '\0'));
+  const auto w = io::read_points(path("w.ply"));
+  ASSERT_EQ(w.size(), 1U);
+  std::uint64_t x_bits = 0;
+  std::memcpy(&x_bits, x_bytes.data(), sizeof x_bits);
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(w[0].x), x_bits);
+}
+
+// Rows end at "\n", "\r\n" or a lone "\r" (old Mac files): read as one line until 2026-11-30,
+// such a file's rows after the first were dropped as extra columns, silently.
+TEST_F(IoTest, TextRowsEndAtAnyLineEnding) {
+  for (const std::string end : {"\n", "\r\n", "\r"}) {
+    const std::string name = end == "\r" ? "CR" : end == "\n" ? "LF" : "CRLF";
+    const std::string rows = "0 0 0" + end + "1 0 0" + end + "0 1 0" + end + "0 0 1.5" + end;
+    const auto p = io::read_points(write("e.xyz", rows));
+    ASSERT_EQ(p.size(), 4U) << name;
+    EXPECT_EQ(p[3].z, 1.5) << name;
+    // A message's line number counts each row once, "\r\n" too.
+    expect_error(write("bad.xyz", "0 0 0" + end + "1 0 0" + end + "x 0 0" + end), "bad.xyz:3:");
+  }
+}
+
+TEST_F(IoTest, ADirectoryIsNamedAsOne) {
+  fs::create_directories(path("folder.xyz"));
+  expect_error(path("folder.xyz"), "is a directory");
+}
+
 TEST_F(IoTest, BadInputGetsClearErrors) {
   expect_error(path("missing.xyz"), "cannot open");
   expect_error(write("nan.xyz", "1 2 3\n4 nan 6\n"), "nan.xyz:2");

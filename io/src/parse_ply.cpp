@@ -132,14 +132,29 @@ class AsciiReader {
 
 }  // namespace
 
+namespace {
+
+// Where the body starts: after the header's first line whose keyword is end_header (the words
+// may also stand in a comment line, and in a binary body), or npos when no line is.
+std::size_t ply_body_start(std::string_view bytes) {
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t next = 0;
+    std::string_view line = bytes.substr(at, TextScanner::line_end(bytes, at, next) - at);
+    std::string_view keyword;
+    if (TextScanner::next_token(line, keyword) && keyword == "end_header") return next;
+    at = next;
+  }
+  return std::string_view::npos;
+}
+
+}  // namespace
+
 std::vector<Point3> parse_ply(std::string_view bytes, const std::string& name) {
-  const std::size_t header_end_pos = bytes.find("end_header");
   if (bytes.substr(0, 3) != "ply") throw InputError(name + ": not a PLY file (no 'ply' magic)");
-  if (header_end_pos == std::string_view::npos) {
+  const std::size_t body_start = ply_body_start(bytes);
+  if (body_start == std::string_view::npos) {
     throw InputError(name + ": PLY header has no end_header line");
   }
-  std::size_t body_start = bytes.find('\n', header_end_pos);
-  body_start = body_start == std::string_view::npos ? bytes.size() : body_start + 1;
   TextScanner scan(bytes.substr(0, body_start), name);
 
   std::optional<Encoding> encoding;

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -43,6 +44,11 @@ std::string decompress_xz(const std::string& packed, const std::string& path) {
 }  // namespace
 
 std::string read_file_bytes(const std::string& path) {
+  // A directory opens, and reads as empty: the error would be about 0 points.
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path + ": is a directory, not a file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
   std::ostringstream buffer;

@@ -14,13 +14,26 @@ class TextScanner {
  public:
   TextScanner(std::string_view text, std::string name) : text_(text), name_(std::move(name)) {}
 
+  // A line of `text` from `pos`: it ends at "\n", "\r\n" or a lone "\r" (old Mac files: read
+  // as one line, their rows were lost as extra columns of the first) or at the text's end.
+  // Returns the line's end; `next` is where the line after it starts.
+  static std::size_t line_end(std::string_view text, std::size_t pos, std::size_t& next) {
+    const std::size_t end = text.find_first_of("\r\n", pos);
+    if (end == std::string_view::npos) {
+      next = text.size();
+      return text.size();
+    }
+    next = text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n' ? end + 2 : end + 1;
+    return end;
+  }
+
   // Next line that is neither blank nor a comment ('#' starts a comment); false at the end.
   bool next_content_line(std::string_view& line) {
     while (pos_ < text_.size()) {
-      std::size_t end = text_.find('\n', pos_);
-      if (end == std::string_view::npos) end = text_.size();
+      std::size_t next = 0;
+      const std::size_t end = line_end(text_, pos_, next);
       std::string_view raw = text_.substr(pos_, end - pos_);
-      pos_ = end + 1;
+      pos_ = next;
       ++line_number_;
       if (const std::size_t hash = raw.find('#'); hash != std::string_view::npos) {
         raw = raw.substr(0, hash);

@@ -141,7 +141,8 @@ def triangulate(points, *, predicates="adaptive", method="sequential", threads=1
     dtype) raises ValueError with the CLI's message.
     """
     xyz = _points(points)
-    if repair not in _REPAIRS:
+    # Only hashable kinds are looked up: a list's look-up raised TypeError, not the ValueError here.
+    if not isinstance(repair, (type(None), bool, str)) or repair not in _REPAIRS:
         raise ValueError(f"repair must be None, True or one of splay, flips-splay, flips, "
                          f"rebuild (got {repair!r})")
     threads = _integer(threads, "threads", 1, 1024)

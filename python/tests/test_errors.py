@@ -97,6 +97,8 @@ def test_ragged_lists_raise():
     ({"location": "octree"}, "location must be one of dag, walk"),
     ({"insertion": "bulk"}, "insertion must be one of flips, cavity"),
     ({"repair": "glue"}, "repair must be None, True or one of"),
+    ({"repair": []}, "repair must be None, True or one of"),  # unhashable: was a TypeError
+    ({"repair": 2.5}, "repair must be None, True or one of"),
     ({"threads": 2}, "runs on one thread"),
     ({"threads": 0, "method": "pessimistic"}, r"threads must be in \[1, 1024\]"),
     ({"threads": "2"}, "threads must be an integer"),
