@@ -35,6 +35,7 @@
 #include "methods/lock_table.hpp"
 #include "methods/optimistic_detect.hpp"
 #include "methods/optimistic_prevent.hpp"
+#include "methods/optimistic_worker.hpp"
 #include "methods/partition_sync.hpp"
 #include "undo_check.hpp"
 #include "validator_recount.hpp"
@@ -879,6 +880,37 @@ TEST(ParallelMethods, CurvePartitionCutsAtQuantilesIntoRuns) {
 
 // A thread of the partitioned method may change a tetrahedron only when every finite vertex is
 // in its part; the vertex at infinity is in every part; a pass of one part owns everything.
+// The sleeps after consecutive give-ups: 2^k / 2 to 2^k us after the (k+1)-th, up to 16 ms,
+// random (threads that gave up against each other must not come back in step: with a fixed
+// sleep capped at 1 ms, 16 threads on GMP-bound points gave up 25 times a point and once went
+// 10 s without an insertion), and different from thread to thread.
+TEST(ParallelMethods, BackoffAfterGiveUpsIsRandomAndGrowsTo16Ms) {
+  using engine::Backoff;
+  using engine::kMostBackoffShift;
+  EXPECT_EQ(1U << kMostBackoffShift, 16384U);
+  EXPECT_EQ(1U << engine::kMostLocationBackoffShift, 1024U);
+  Backoff first(0);
+  Backoff second(1);
+  for (int shift = 0; shift <= kMostBackoffShift; ++shift) {
+    std::vector<std::uint32_t> drawn;
+    int differ = 0;
+    for (int k = 0; k < 64; ++k) {
+      const std::uint32_t a = first.draw(shift);
+      const std::uint32_t b = second.draw(shift);
+      EXPECT_GE(a, std::max(1U, (1U << shift) / 2));
+      EXPECT_LE(a, 1U << shift);
+      differ += a != b ? 1 : 0;
+      drawn.push_back(a);
+    }
+    std::sort(drawn.begin(), drawn.end());
+    if (shift >= 3) {
+      // Spread over the range, not one value: at least a quarter of it between the extremes.
+      EXPECT_GE(drawn.back() - drawn.front(), (1U << shift) / 4) << "shift " << shift;
+      EXPECT_GT(differ, 32) << "shift " << shift;
+    }
+  }
+}
+
 TEST(ParallelMethods, PartitionSyncOwnsOnlyTetrahedraOfItsPart) {
   const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   engine::SharedMesh mesh(points);

@@ -13,6 +13,35 @@
 
 namespace dtlab::engine {
 
+// A thread's sleeps after consecutive give-ups: after the (k+1)-th in a row, drawn at random
+// from 2^k / 2 to 2^k us (at least 1). Random, so that threads that gave up against each other do
+// not come back in step and meet again; growing to 2^14 us (16 ms), as long as a slow insertion
+// takes: with every predicate handed to GMP (coordinates 1e-300 beside 1e300) one takes about
+// 1 ms on a CPU of its own and several times that with threads sharing it, and with a fixed
+// sleep capped at 1 ms (as until 2026-11-30) 16 such threads on 2 CPUs gave up against each other
+// 25 times a point and once went 10 s without an insertion (performance-log.md, twentieth
+// session).
+constexpr int kMostBackoffShift = 14;
+// A failed location (an inexact kernel's, mostly, which every retry repeats) backs off to 1 ms
+// at most, as before: its kMaxLocationAttempts tries take under 0.1 s.
+constexpr int kMostLocationBackoffShift = 10;
+class Backoff {
+ public:
+  explicit Backoff(std::uint64_t seed) : state_(0x9E3779B97F4A7C15ULL * (seed + 1)) {}
+  // Microseconds to sleep after give-up number shift + 1 in a row: in [2^shift / 2, 2^shift],
+  // at least 1.
+  std::uint32_t draw(int shift) {
+    state_ ^= state_ << 13;  // xorshift64: cheap, and statistical quality is not needed here
+    state_ ^= state_ >> 7;
+    state_ ^= state_ << 17;
+    const std::uint32_t half = (1U << shift) / 2;
+    return std::max<std::uint32_t>(1, half + static_cast<std::uint32_t>(state_ % (half + 1)));
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
 // Runs run.threads threads, thread i with the policy `make_sync(i, counters)` returns (counters:
 // the thread's ThreadStats); `done(i, sync)` sees thread i's policy after its last insertion
 // (burglary takes its marks).
@@ -30,6 +59,7 @@ void insert_with_policies(ParallelRun<K>& run, MakeSync&& make_sync, Done&& done
     auto& dt = thread.dt;
     using Outcome = typename IncrementalDelaunay<K, Sync>::Outcome;
     int consecutive_give_ups = 0;
+    Backoff backoff(static_cast<std::uint64_t>(i));
     while (const auto v = work.next()) {
       if (run.stopping()) break;
       const Outcome outcome = dt.insert(*v);
@@ -47,8 +77,10 @@ void insert_with_policies(ParallelRun<K>& run, MakeSync&& make_sync, Done&& done
         // Back off before the next attempt: the thread that waited for our locks must get them
         // before we take them again, or the two can give up against each other forever; and a
         // rollback that raced our descent must finish before we descend again.
-        const int shift = std::min(consecutive_give_ups++, 10);
-        std::this_thread::sleep_for(std::chrono::microseconds(1 << shift));
+        const int most =
+            outcome == Outcome::Unlocated ? kMostLocationBackoffShift : kMostBackoffShift;
+        const int shift = std::min(consecutive_give_ups++, most);
+        std::this_thread::sleep_for(std::chrono::microseconds(backoff.draw(shift)));
       } else {
         consecutive_give_ups = 0;
         run.progressed(i);
