@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -200,7 +199,6 @@ class PartitionedRun {
     if (parts > 1) {
       sort_along_pass_curve(pending, kind == PassKind::Round && vertices_end < last_round_begin_);
     }
-    find_part_ranges(parts, pending);
     for (int i = 0; i < run_.threads; ++i) {
       syncs_[static_cast<std::size_t>(i)]->set_part(static_cast<std::uint8_t>(i), parts == 1);
     }
@@ -275,27 +273,6 @@ class PartitionedRun {
       sort_keyed_ = {};
       sort_scratch_ = {};
     }
-  }
-
-  // Part i's points are pending[part_begin_[i], part_begin_[i + 1]): sorted along the pass
-  // curve, whose parts are ranges of keys (arcs, or the slabs' halves), each part's points are
-  // one run. A thread then reads only its own run, not every pending point's part.
-  void find_part_ranges(int parts, const std::vector<std::uint32_t>& pending) {
-    part_begin_.assign(static_cast<std::size_t>(parts) + 1, pending.size());
-    part_begin_[0] = 0;
-    for (std::size_t i = 1; i < part_begin_.size() - 1; ++i) {
-      const auto first =
-          std::partition_point(pending.begin() + static_cast<std::ptrdiff_t>(part_begin_[i - 1]),
-                               pending.end(), [&](std::uint32_t v) { return part_of_[v] < i; });
-      part_begin_[i] = static_cast<std::size_t>(first - pending.begin());
-    }
-#ifndef NDEBUG
-    for (std::size_t i = 0; parts > 1 && i + 1 < part_begin_.size(); ++i) {
-      for (std::size_t k = part_begin_[i]; k < part_begin_[i + 1]; ++k) {
-        assert(part_of_[pending[k]] == i);
-      }
-    }
-#endif
   }
 
   // Lays the pass's curve (moved by pass_shift; for two parts centred across next_slab_axis on
@@ -399,16 +376,14 @@ class PartitionedRun {
   // starting there. An anchor with no readable tetrahedron near it (none in kStartSearch) has
   // none: the part's points after it wait for the next anchor or pass.
   void place_walk_starts(int parts, const std::vector<std::uint32_t>& pending) {
+    std::vector<std::size_t> counted(static_cast<std::size_t>(parts), 0);
     const std::size_t spacing = slab_axis_ >= 0 ? kSlabAnchorSpacing : kArcAnchorSpacing;
-    most_points_ = 0;
-    for (std::size_t part = 0; part < static_cast<std::size_t>(parts); ++part) {
-      anchors_[part].clear();
-      for (std::size_t position = part_begin_[part]; position < part_begin_[part + 1];
-           position += spacing) {
-        anchors_[part].push_back({position, kNoTet});
-      }
-      most_points_ = std::max(most_points_, part_begin_[part + 1] - part_begin_[part]);
+    for (auto& a : anchors_) a.clear();
+    for (std::size_t position = 0; position < pending.size(); ++position) {
+      const std::uint8_t part = part_of_[pending[position]];
+      if (counted[part]++ % spacing == 0) anchors_[part].push_back({position, kNoTet});
     }
+    most_points_ = *std::max_element(counted.begin(), counted.end());
     // Each part's walks on its own thread: they only read, and nobody writes until they end.
     run_.on_threads([&](int i) {
       const auto index = static_cast<std::size_t>(i);
@@ -447,9 +422,7 @@ class PartitionedRun {
     return static_cast<std::uint8_t>(partition_.part_of(pass_key(v)));
   }
   // Point v's position along the pass's curve.
-  std::uint64_t pass_key(std::uint32_t v) const {
-    return curve_.key(v);
-  }
+  std::uint64_t pass_key(std::uint32_t v) const { return curve_.key(v); }
   double coordinate(std::uint32_t v, int axis) const {
     return predicates::coordinate(run_.input.points[v], axis);
   }
@@ -467,10 +440,10 @@ class PartitionedRun {
     std::size_t next_anchor = 1;  // the first one is the pass's first start
     bool gave_up = false;         // since the last anchor
     std::size_t tried = 0;        // of the part's points
-    std::size_t position = part_begin_[index];
-    const std::size_t end = part_begin_[index + 1];
-    for (; position < end; ++position) {
+    std::size_t position = 0;
+    for (; position < pending.size(); ++position) {
       const std::uint32_t v = pending[position];
+      if (parts > 1 && part_of_[v] != i) continue;
       if (run_.stopping()) break;
       if (defers && first_part_done_.load(std::memory_order_relaxed)) break;
       ++tried;
@@ -503,7 +476,7 @@ class PartitionedRun {
         run_.progressed(i);
       }
     }
-    if (position == end) {
+    if (position == pending.size()) {
       // A part with few points (keys crowded by a far outlier cut unevenly, or none at all) or
       // that gave up on most of them (walks stopped at its border) has not done its share of the
       // pass: ending it then would defer nearly everything.
@@ -512,8 +485,9 @@ class PartitionedRun {
       if (defers && did_its_share) first_part_done_.store(true, std::memory_order_relaxed);
     } else if (!run_.stopping()) {
       std::vector<std::uint32_t>& deferred = deferred_[index];
-      deferred.insert(deferred.end(), pending.begin() + static_cast<std::ptrdiff_t>(position),
-                      pending.begin() + static_cast<std::ptrdiff_t>(end));
+      for (; position < pending.size(); ++position) {
+        if (part_of_[pending[position]] == i) deferred.push_back(pending[position]);
+      }
     }
     // The counters this method's insertions touch (count_outcome's and the abandonments).
     ThreadStats& total = run_.stats.threads[index];
@@ -536,7 +510,6 @@ class PartitionedRun {
   std::size_t sort_buffer_size_ = 0;  // the sort buffers' size while the rounds keep them
   std::vector<KeyedId> sort_keyed_;   // the pass's (key, point) pairs, sorted
   std::vector<KeyedId> sort_scratch_;
-  std::vector<std::size_t> part_begin_;  // this pass: part i's run of the pending points
   std::vector<std::unique_ptr<PartitionSync>> syncs_;
   std::vector<std::unique_ptr<ThreadInserter<K, PartitionSync>>> inserters_;
   std::vector<std::vector<std::uint32_t>> failed_;    // per thread, this pass
