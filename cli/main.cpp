@@ -2,8 +2,10 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <map>
@@ -29,11 +31,16 @@ const CLI::Validator kFiniteNonNegative(
     },
     "FLOAT:FINITE >= 0");
 
-// An unsigned integer option's text without a sign: CLI11 reads "-1" into a std::uint64_t as
-// 2^64 - 1, which would run silently with another seed or flip bound than asked for.
-const CLI::Validator kNoMinusSign(
+// A std::uint64_t option's text, which CLI11 reads by strtoull, less its two silent wraps: "-1"
+// read as 2^64 - 1, and a number above 2^64 - 1 read as 2^64 - 1; either would run with another
+// seed or flip bound than asked for. Text that is no number is left to CLI11's own message.
+const CLI::Validator kUnsigned64(
     [](std::string& text) -> std::string {
       if (text.find('-') != std::string::npos) return "Value " + text + " is negative";
+      errno = 0;
+      char* end = nullptr;
+      (void)std::strtoull(text.c_str(), &end, 0);
+      if (errno == ERANGE) return "Value " + text + " is above 2^64 - 1";
       return {};
     },
     "");
@@ -95,13 +102,13 @@ int run_command_line(int argc, char** argv) {
   auto* generate = app.add_subcommand("generate", "write a generated point set (.xyz or .node)");
   generate->add_option("DIST", family, "distribution (uniform, grid, sphere, ...)")->required();
   generate->add_option("N", count, "number of points asked for")->required();
-  generate->add_option("--seed", seed, "random seed")->check(kNoMinusSign);
+  generate->add_option("--seed", seed, "random seed")->check(kUnsigned64);
   generate->add_option("-o,--output", output, "output file (.xyz or .node)")->required();
 
   std::string input;
   auto* info = app.add_subcommand("info", "facts about a point set: counts, duplicates, dimension");
   info->add_option("INPUT", input, "point file or generator spec (e.g. uniform:1000)")->required();
-  info->add_option("--seed", seed, "seed for a generator spec")->check(kNoMinusSign);
+  info->add_option("--seed", seed, "seed for a generator spec")->check(kUnsigned64);
 
   dtlab::cli::TriangulateArgs targs;
   // The fastest exact configuration by default (docs/performance.md); --paper for the paper's.
@@ -189,7 +196,7 @@ int run_command_line(int argc, char** argv) {
   tri->add_option("--bounding", targs.options.bounding, "infinite | aux-tet")
       ->transform(CLI::CheckedTransformer(boundings, CLI::ignore_case));
   tri->add_option("--seed", targs.options.seed, "insertion order (and generator) seed")
-      ->check(kNoMinusSign);
+      ->check(kUnsigned64);
   add_mesh_output_options(tri, targs.output);
   tri->add_option("--stats", targs.stats, "write stats JSON to FILE, or - for stdout");
   tri->add_flag("--validate", targs.validate, "check the result with the exact validator");
@@ -205,7 +212,7 @@ int run_command_line(int argc, char** argv) {
       ->check(kFiniteNonNegative);
   tri->add_option("--max-flips", targs.options.max_flips_per_insertion,
                   "flip bound per insertion (abandon beyond)")
-      ->check(kNoMinusSign);
+      ->check(kUnsigned64);
 
   std::string points_path;
   std::string mesh_path;
@@ -300,7 +307,7 @@ int run_command_line(int argc, char** argv) {
   auto* audit =
       app.add_subcommand("predicates-audit", "predicate calls per stage while triangulating INPUT");
   audit->add_option("INPUT", input, "point file or generator spec")->required();
-  audit->add_option("--seed", seed, "seed")->check(kNoMinusSign);
+  audit->add_option("--seed", seed, "seed")->check(kUnsigned64);
   audit->add_option("--predicates", audit_kernel, "fast | adaptive | filtered | exact")
       ->transform(CLI::CheckedTransformer(kernels, CLI::ignore_case));
 
@@ -389,8 +396,9 @@ int run_command_line(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const int code = run_command_line(argc, argv);
-  // A write to standard output that failed (a full disk, a closed pipe's reader gone, /dev/full)
-  // lost what the command printed: the stats JSON of --stats -, the tables. Not a success.
+  // A write to standard output that failed (a full disk, /dev/full, a closed descriptor; a pipe
+  // whose reader is gone ends the process by SIGPIPE first) lost what the command printed: the
+  // stats JSON of --stats -, the tables. Not a success.
   std::cout.flush();
   if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
     std::fprintf(stderr, "dtlab: error: writing to standard output failed\n");

@@ -283,16 +283,20 @@ TEST_F(IoTest, PlyHeaderEndsAtItsEndHeaderLineNotAtTheWords) {
   const auto p = io::read_points(path("c.ply"));
   ASSERT_EQ(p.size(), 2U);
   EXPECT_EQ(p[1].x, 4);
-  // ply_header's elements: a face (a uchar count 3, three ints), then a vertex's x, y (doubles),
-  // red (a uchar) and z; x's eight bytes are "end_head".
-  const std::string x_bytes = "end_head";
-  write("w.ply", ply_header("binary_little_endian", 1, "double") + std::string(1, '\x03') +
-                     std::string(12, '\0') + x_bytes + std::string(8 + 1 + 8, '\0'));
-  const auto w = io::read_points(path("w.ply"));
-  ASSERT_EQ(w.size(), 1U);
-  std::uint64_t x_bits = 0;
-  std::memcpy(&x_bits, x_bytes.data(), sizeof x_bits);
-  EXPECT_EQ(std::bit_cast<std::uint64_t>(w[0].x), x_bits);
+  // A binary file whose comment holds the words, and whose header ends "\r\n": the body starts
+  // after the end_header line's "\n" (the old search began it inside the comment's line).
+  const double x = 0.25;
+  std::string body(3 * sizeof(double), '\0');
+  std::memcpy(body.data(), &x, sizeof x);
+  write("b.ply",
+        "ply\r\nformat binary_little_endian 1.0\r\ncomment end_header is not here\r\n"
+        "element vertex 1\r\nproperty double x\r\nproperty double y\r\nproperty double z\r\n"
+        "end_header\r\n" +
+            body);
+  const auto b = io::read_points(path("b.ply"));
+  ASSERT_EQ(b.size(), 1U);
+  EXPECT_EQ(b[0].x, 0.25);
+  EXPECT_EQ(b[0].y, 0.0);
 }
 
 // Rows end at "\n", "\r\n" or a lone "\r" (old Mac files): read as one line until 2026-11-30,
@@ -304,8 +308,13 @@ TEST_F(IoTest, TextRowsEndAtAnyLineEnding) {
     const auto p = io::read_points(write("e.xyz", rows));
     ASSERT_EQ(p.size(), 4U) << name;
     EXPECT_EQ(p[3].z, 1.5) << name;
-    // A message's line number counts each row once, "\r\n" too.
+    // A message's line number counts each row once, "\r\n" too; in an ASCII PLY body as well.
     expect_error(write("bad.xyz", "0 0 0" + end + "1 0 0" + end + "x 0 0" + end), "bad.xyz:3:");
+    const std::string ply = "ply" + end + "format ascii 1.0" + end + "element vertex 2" + end +
+                            "property float x" + end + "property float y" + end +
+                            "property float z" + end + "end_header" + end + "1 2 3" + end +
+                            "4 x 6" + end;
+    expect_error(write("bad.ply", ply), "bad.ply:9:");
   }
 }
 

@@ -104,7 +104,9 @@ class AsciiReader {
     std::string_view token;
     while (true) {
       while (!rest_.empty() && (TextScanner::is_space(rest_.front()) || rest_.front() == '\n')) {
-        if (rest_.front() == '\n') ++line_;
+        // A row ends at "\n", "\r\n" or a lone "\r", as in TextScanner::line_end.
+        const bool lone_cr = rest_.front() == '\r' && (rest_.size() < 2 || rest_[1] != '\n');
+        if (rest_.front() == '\n' || lone_cr) ++line_;
         rest_.remove_prefix(1);
       }
       if (rest_.empty()) throw InputError(name_ + ": truncated ASCII data in " + where);
@@ -130,16 +132,13 @@ class AsciiReader {
   const std::string& name_;
 };
 
-}  // namespace
-
-namespace {
-
 // Where the body starts: after the header's first line whose keyword is end_header (the words
 // may also stand in a comment line, and in a binary body), or npos when no line is.
 std::size_t ply_body_start(std::string_view bytes) {
+  TextScanner::LineEnds ends;
   for (std::size_t at = 0; at < bytes.size();) {
     std::size_t next = 0;
-    std::string_view line = bytes.substr(at, TextScanner::line_end(bytes, at, next) - at);
+    std::string_view line = bytes.substr(at, TextScanner::line_end(bytes, at, next, ends) - at);
     std::string_view keyword;
     if (TextScanner::next_token(line, keyword) && keyword == "end_header") return next;
     at = next;

@@ -1,5 +1,6 @@
 #pragma once
 // Line-oriented scanning of text formats, with the line number for error messages.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -14,24 +15,39 @@ class TextScanner {
  public:
   TextScanner(std::string_view text, std::string name) : text_(text), name_(std::move(name)) {}
 
+  // Where the next "\n" and the next "\r" lie, at or after the position last asked
+  // (text.size() when none; npos before the first line), kept from line to line: each is then
+  // searched for once over the text (by memchr), not once a line, and a file without one (no
+  // "\r" in most files, no "\n" in old Mac files) is not searched to its end for every row.
+  struct LineEnds {
+    std::size_t newline = std::string_view::npos;
+    std::size_t cr = std::string_view::npos;
+  };
   // A line of `text` from `pos`: it ends at "\n", "\r\n" or a lone "\r" (old Mac files: read
   // as one line, their rows were lost as extra columns of the first) or at the text's end.
   // Returns the line's end; `next` is where the line after it starts.
-  static std::size_t line_end(std::string_view text, std::size_t pos, std::size_t& next) {
-    const std::size_t end = text.find_first_of("\r\n", pos);
-    if (end == std::string_view::npos) {
-      next = text.size();
-      return text.size();
+  static std::size_t line_end(std::string_view text, std::size_t pos, std::size_t& next,
+                              LineEnds& ends) {
+    if (ends.newline == std::string_view::npos || ends.newline < pos) {
+      ends.newline = std::min(text.find('\n', pos), text.size());
     }
-    next = text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n' ? end + 2 : end + 1;
-    return end;
+    if (ends.cr == std::string_view::npos || ends.cr < pos) {
+      ends.cr = std::min(text.find('\r', pos), text.size());
+    }
+    if (ends.cr >= ends.newline) {
+      next = std::min(ends.newline + 1, text.size());
+      return ends.newline;
+    }
+    // "\r\n" (or a "\r" ending the text), else a lone "\r".
+    next = ends.cr + 1 == ends.newline ? std::min(ends.newline + 1, text.size()) : ends.cr + 1;
+    return ends.cr;
   }
 
   // Next line that is neither blank nor a comment ('#' starts a comment); false at the end.
   bool next_content_line(std::string_view& line) {
     while (pos_ < text_.size()) {
       std::size_t next = 0;
-      const std::size_t end = line_end(text_, pos_, next);
+      const std::size_t end = line_end(text_, pos_, next, ends_);
       std::string_view raw = text_.substr(pos_, end - pos_);
       pos_ = next;
       ++line_number_;
@@ -104,6 +120,7 @@ class TextScanner {
   std::string name_;
   std::size_t pos_ = 0;
   std::size_t line_number_ = 0;
+  LineEnds ends_;
 };
 
 }  // namespace dtlab::io::detail

@@ -141,8 +141,11 @@ def triangulate(points, *, predicates="adaptive", method="sequential", threads=1
     dtype) raises ValueError with the CLI's message.
     """
     xyz = _points(points)
-    # Only hashable kinds are looked up: a list's look-up raised TypeError, not the ValueError here.
-    if not isinstance(repair, (type(None), bool, str)) or repair not in _REPAIRS:
+    try:
+        known = repair in _REPAIRS
+    except TypeError:  # unhashable (a list): the ValueError below, not a TypeError
+        known = False
+    if not known:
         raise ValueError(f"repair must be None, True or one of splay, flips-splay, flips, "
                          f"rebuild (got {repair!r})")
     threads = _integer(threads, "threads", 1, 1024)

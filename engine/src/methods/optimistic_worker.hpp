@@ -19,7 +19,7 @@ namespace dtlab::engine {
 // takes: with every predicate handed to GMP (coordinates 1e-300 beside 1e300) one takes about
 // 1 ms on a CPU of its own and several times that with threads sharing it, and with a fixed
 // sleep capped at 1 ms (as until 2026-11-30) 16 such threads on 2 CPUs gave up against each other
-// 25 times a point and once went 10 s without an insertion (performance-log.md, twentieth
+// up to 25 times a point and once went 10 s without an insertion (performance-log.md, twentieth
 // session).
 constexpr int kMostBackoffShift = 14;
 // A failed location (an inexact kernel's, mostly, which every retry repeats) backs off to 1 ms
@@ -27,7 +27,14 @@ constexpr int kMostBackoffShift = 14;
 constexpr int kMostLocationBackoffShift = 10;
 class Backoff {
  public:
-  explicit Backoff(std::uint64_t seed) : state_(0x9E3779B97F4A7C15ULL * (seed + 1)) {}
+  // The state from the seed by splitmix64's finalizer, never 0 (xorshift's fixed point); seeds
+  // that differ by a factor of two (thread ids) then start far apart.
+  explicit Backoff(std::uint64_t seed) {
+    std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    state_ = (z ^ (z >> 31)) | 1;
+  }
   // Microseconds to sleep after give-up number shift + 1 in a row: in [2^shift / 2, 2^shift],
   // at least 1.
   std::uint32_t draw(int shift) {

@@ -33,8 +33,9 @@ class WorkSource {
     return true;
   }
   // Lock conflicts end when the other thread finishes. A location fails under an exact kernel
-  // only while another thread's rollback races the descent; with the back-off below, 64 attempts
-  // span more than 50 ms, longer than any insertion takes even under --stress, so a location
+  // only while another thread's rollback races the descent; with the back-off
+  // (optimistic_worker.hpp), 64 attempts sleep 28 to 56 ms, longer than any insertion takes even
+  // under --stress, so a location
   // that fails that often is an inexact kernel's contradiction, which every retry repeats.
   static constexpr int kMaxLockAttempts = 100000;
   static constexpr int kMaxLocationAttempts = 64;
