@@ -6,8 +6,8 @@
 // they are all still alive. If they are, its remaining legalization is still valid and goes on;
 // if not, it stops, counts a potential problem and marks the suspicious tetrahedra for the
 // sequential post-check (methods/burglary_post_check.hpp). Every write still happens under a lock
-// its writer holds, so the mesh stays consistent. run_burglary (registered in registry.cpp) runs it on the
-// optimistic worker loop, then the post-check.
+// its writer holds, so the mesh stays consistent. run_burglary (registered in registry.cpp) runs it
+// on the optimistic worker loop, then the post-check.
 #include <algorithm>
 #include <atomic>
 #include <cassert>
