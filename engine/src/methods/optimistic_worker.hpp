@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <thread>
 
+#include "dtlab/common/random.hpp"
 #include "methods/kernel_dispatch.hpp"
 #include "methods/parallel_run.hpp"
 
@@ -27,26 +28,16 @@ constexpr int kMostBackoffShift = 14;
 constexpr int kMostLocationBackoffShift = 10;
 class Backoff {
  public:
-  // The state from the seed by splitmix64's finalizer, never 0 (xorshift's fixed point); seeds
-  // that differ by a factor of two (thread ids) then start far apart.
-  explicit Backoff(std::uint64_t seed) {
-    std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    state_ = (z ^ (z >> 31)) | 1;
-  }
+  explicit Backoff(std::uint64_t seed) : random_(seed) {}
   // Microseconds to sleep after give-up number shift + 1 in a row: in [2^shift / 2, 2^shift],
   // at least 1.
   std::uint32_t draw(int shift) {
-    state_ ^= state_ << 13;  // xorshift64: cheap, and statistical quality is not needed here
-    state_ ^= state_ >> 7;
-    state_ ^= state_ << 17;
     const std::uint32_t half = (1U << shift) / 2;
-    return std::max<std::uint32_t>(1, half + static_cast<std::uint32_t>(state_ % (half + 1)));
+    return std::max<std::uint32_t>(1, half + static_cast<std::uint32_t>(random_.below(half + 1)));
   }
 
  private:
-  std::uint64_t state_;
+  common::Random random_;  // the project's seeded generator (dtlab/common/random.hpp)
 };
 
 // Runs run.threads threads, thread i with the policy `make_sync(i, counters)` returns (counters:
