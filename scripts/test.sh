@@ -112,8 +112,8 @@ if [ "${DTLAB_SKIP_TSAN:-0}" != "1" ]; then
   # burglary (its threads are under TSan in four other tests and the parallel fuzz replay), and
   # took 202 s of the TSan suite's 395 s of tests on 2026-11-28.
   ctest_exclude='^ParallelMethods\.BurglaryStaysConsistentAndRepairs$' \
-    run_suite tsan "parallel_test lock_grid_test replay_parallel validator_threads_test parallel_ranges_test star_splaying_test run_monitor_test progress_counters_test populate_pages_test radix_sort_test" \
-    "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel|^SplayTetrahedra\\.EveryThreadCount|^SplaySharedMesh\\.ParallelScan|^RunMonitor\\.|^ProgressCounters\\.|^Watchdog\\.|^PopulatePages\\.|^StableSortByKey\\."
+    run_suite tsan "parallel_test lock_grid_test replay_parallel validator_threads_test parallel_ranges_test star_splaying_test run_monitor_test progress_counters_test populate_pages_test radix_sort_test worker_pool_test" \
+    "^ParallelMethods\\.|^fuzz\\.replay_parallel$|^ValidatorThreads\\.|^InParallel|^SplayTetrahedra\\.EveryThreadCount|^SplaySharedMesh\\.ParallelScan|^RunMonitor\\.|^ProgressCounters\\.|^Watchdog\\.|^PopulatePages\\.|^StableSortByKey\\.|^WorkerPool\\."
 fi
 if [ "${DTLAB_SKIP_FUZZ:-0}" != "1" ]; then
   # Each libFuzzer harness for a bounded time from its corpus (DTLAB_FUZZ_SECONDS, default 60: the

@@ -74,5 +74,23 @@ TEST(Watchdog, FiresOnlyWhenNoThreadCounts) {
   }
 }
 
+// Paused (between a run's threaded steps) it does not time the stall, however long; resumed, it
+// times it again from then.
+TEST(Watchdog, APausedWatchdogDoesNotTimeTheStall) {
+  engine::ProgressCounters progress(1);
+  std::atomic<bool> stop{false};
+  engine::Watchdog watchdog(0.2, progress, stop);
+  watchdog.pause();
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // four times the limit
+  EXPECT_FALSE(stop.load());
+  const auto resumed = std::chrono::steady_clock::now();
+  watchdog.resume();
+  while (!stop.load() && std::chrono::steady_clock::now() - resumed < std::chrono::seconds(10)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_TRUE(watchdog.fired());
+  EXPECT_GE(std::chrono::steady_clock::now() - resumed, std::chrono::milliseconds(200));
+}
+
 }  // namespace
 }  // namespace dtlab::test

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -21,6 +22,7 @@
 #include "mesh/tet_store.hpp"
 #include "methods/registry.hpp"
 #include "support/parallel_ranges.hpp"
+#include "support/worker_pool.hpp"
 
 namespace dtlab::engine {
 namespace {
@@ -238,6 +240,11 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   // The steps over whole arrays before the first insertion and after the last run on the
   // method's threads (one for the sequential engine, so that its time stays one thread's).
   const int threads = method_info(options.method).parallel ? std::max(1, options.threads) : 1;
+  // Those threads are started once for the run (support/worker_pool.hpp): this one and
+  // threads - 1 workers, which every step's parallel helpers take.
+  std::optional<WorkerPool> workers;
+  if (threads > 1) workers.emplace(threads - 1);
+  std::optional<PoolScope> run_threads(std::in_place, workers ? &*workers : nullptr);
   PreparedPoints prepared(points, options, threads, stats);
   result.tetrahedra = run_method(prepared, options, stats, start);
 
@@ -251,6 +258,8 @@ Triangulation triangulate_in_place(std::vector<Point3>& points, const Triangulat
   prepared.to_input_ids(result.tetrahedra, input, stats.duplicates > 0, inexact_repaired);
   stats.seconds.output += std::chrono::duration<double>(Clock::now() - finish_start).count();
   stats.tetrahedra = result.tetrahedra.size();
+  run_threads.reset();  // the workers joined within the run's time, as its threads were before
+  workers.reset();
   // The post-check's validation is a measurement, not part of the method.
   stats.seconds.total =
       std::chrono::duration<double>(Clock::now() - start).count() - stats.post_check.seconds_check;

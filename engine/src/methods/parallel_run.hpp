@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -27,6 +28,7 @@
 #include "methods/watchdog.hpp"
 #include "methods/work_source.hpp"
 #include "repair/splay_repair.hpp"
+#include "support/worker_pool.hpp"
 
 namespace dtlab::engine {
 
@@ -122,11 +124,19 @@ class ParallelRun {
   TriangulationStats& thread_stats(int i) { return thread_stats_[static_cast<std::size_t>(i)]; }
 
   // Runs `body` under the watchdog; a thread's exception (record_error) or the watchdog's stop is
-  // thrown once `body` has joined its threads.
+  // thrown once `body` has joined its threads. One watchdog thread for the run, started at the
+  // first body and paused between bodies.
   template <class Body>
   void watched(Body&& body) {
-    Watchdog watchdog(watchdog_limit_, progress, table.stop, options.monitor);
+    if (!watchdog_) {
+      watchdog_ =
+          std::make_unique<Watchdog>(watchdog_limit_, progress, table.stop, options.monitor);
+    } else {
+      watchdog_->resume();
+    }
+    Watchdog& watchdog = *watchdog_;
     body();
+    watchdog.pause();
     // A body shorter than the watchdog's period (a partitioned pass) is looked at here.
     if (options.monitor != nullptr) {
       options.monitor->done.store(progress.total(), std::memory_order_relaxed);
@@ -145,16 +155,21 @@ class ParallelRun {
   template <class Body>
   void on_threads(Body&& body) {
     watched([&] {
-      std::vector<std::thread> pool;
-      for (int i = 0; i < threads; ++i) {
-        pool.emplace_back([&, i] {
-          try {
-            body(i);
-          } catch (...) {
-            record_error();
-          }
-        });
+      auto guarded = [&](int i) {
+        try {
+          body(i);
+        } catch (...) {
+          record_error();
+        }
+      };
+      // The run's workers (the driver's pool, the last index on this thread), or threads
+      // started for this call.
+      if (WorkerPool* workers = WorkerPool::current(); workers && workers->can_run(threads)) {
+        workers->run(threads, guarded);
+        return;
       }
+      std::vector<std::thread> pool;
+      for (int i = 0; i < threads; ++i) pool.emplace_back(guarded, i);
       for (auto& t : pool) t.join();
     });
   }
@@ -258,6 +273,7 @@ class ParallelRun {
   double watchdog_limit_ = 0;
   std::mutex error_mutex_;
   std::exception_ptr first_error_;
+  std::unique_ptr<Watchdog> watchdog_;  // last: it reads `progress` and `table` until it ends
 };
 
 // One thread's inserter on the run's mesh, with the thread's side of the epochs where the

@@ -33,13 +33,23 @@ class Watchdog {
     wake_.notify_all();
     thread_.join();
   }
+  // Between a run's threaded steps (a partitioned run's setups, which finish no insertion): the
+  // stall is not timed until resume(), which starts its clock again. The monitor is still served.
+  void pause() {
+    std::lock_guard<std::mutex> guard(mutex_);
+    paused_ = true;
+  }
+  void resume() {
+    std::lock_guard<std::mutex> guard(mutex_);
+    paused_ = false;
+    last_ = progress_.total();
+    last_change_ = std::chrono::steady_clock::now();
+  }
   [[nodiscard]] bool fired() const { return fired_.load(); }
   [[nodiscard]] bool cancelled() const { return cancelled_.load(); }
 
  private:
   void watch() {
-    std::uint64_t last = progress_.total();
-    auto last_change = std::chrono::steady_clock::now();
     std::unique_lock<std::mutex> lock(mutex_);
     while (!done_) {
       wake_.wait_for(lock, std::chrono::milliseconds(100));
@@ -52,10 +62,11 @@ class Watchdog {
           return;
         }
       }
-      if (now != last) {
-        last = now;
-        last_change = std::chrono::steady_clock::now();
-      } else if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_change)
+      if (paused_) continue;
+      if (now != last_) {
+        last_ = now;
+        last_change_ = std::chrono::steady_clock::now();
+      } else if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_change_)
                      .count() > seconds_) {
         fired_ = true;
         stop_ = true;
@@ -71,8 +82,11 @@ class Watchdog {
   std::atomic<bool> cancelled_{false};
   std::mutex mutex_;
   std::condition_variable wake_;
-  bool done_ = false;
-  std::thread thread_;
+  bool done_ = false;  // guarded by mutex_, as are the three below
+  bool paused_ = false;
+  std::uint64_t last_ = progress_.total();  // the count when it last changed
+  std::chrono::steady_clock::time_point last_change_ = std::chrono::steady_clock::now();
+  std::thread thread_;  // last: it starts once the members above are set
 };
 
 }  // namespace dtlab::engine

@@ -7,14 +7,34 @@
 #include <thread>
 #include <vector>
 
+#include "support/worker_pool.hpp"
+
 namespace dtlab::engine {
 
 // Below this many items a step runs on the caller's thread alone: starting a thread costs about
 // as much as a few thousand items' work.
 inline constexpr std::size_t kParallelMinimum = 4096;
 
+// in_parallel_ranges' parts on threads started for them (no pool serves them).
+template <class Guarded>
+void start_ranges(std::size_t n, std::size_t count, Guarded& guarded) {
+  std::vector<std::thread> helpers;
+  helpers.reserve(count - 1);
+  try {
+    for (std::size_t part = 0; part + 1 < count; ++part) {
+      helpers.emplace_back(guarded, n * part / count, n * (part + 1) / count, part);
+    }
+  } catch (...) {  // a thread that could not start (std::system_error): end the started ones
+    for (std::thread& h : helpers) h.join();
+    throw;
+  }
+  guarded(n * (count - 1) / count, n, count - 1);
+  for (std::thread& h : helpers) h.join();
+}
+
 // Runs work(begin, end, part) over [0, n) cut into `parts` contiguous ranges (at most n), one
-// thread each (the caller's thread takes the last); with parts <= 1, or n below `minimum`, it
+// thread each (the caller's thread takes the last; the others are the current WorkerPool's when
+// it can serve them, else started here); with parts <= 1, or n below `minimum`, it
 // runs inline as part 0 alone. An exception from a part (std::bad_alloc on a large mesh) is held
 // until every part has ended, then the lowest part's is rethrown on the caller's thread: an
 // exception escaping a std::thread would terminate the process.
@@ -35,18 +55,15 @@ void in_parallel_ranges(std::size_t n, int parts, Work work,
       failed[part] = std::current_exception();
     }
   };
-  std::vector<std::thread> helpers;
-  helpers.reserve(count - 1);
-  try {
-    for (std::size_t part = 0; part + 1 < count; ++part) {
-      helpers.emplace_back(guarded, n * part / count, n * (part + 1) / count, part);
-    }
-  } catch (...) {  // a thread that could not start (std::system_error): end the started ones
-    for (std::thread& h : helpers) h.join();
-    throw;
+  if (WorkerPool* pool = WorkerPool::current(); pool && pool->can_run(static_cast<int>(count))) {
+    auto range = [&](int part) {
+      const auto p = static_cast<std::size_t>(part);
+      guarded(n * p / count, n * (p + 1) / count, p);
+    };
+    pool->run(static_cast<int>(count), range);
+  } else {
+    start_ranges(n, count, guarded);
   }
-  guarded(n * (count - 1) / count, n, count - 1);
-  for (std::thread& h : helpers) h.join();
   for (const std::exception_ptr& e : failed) {
     if (e) std::rethrow_exception(e);
   }
