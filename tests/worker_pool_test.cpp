@@ -104,22 +104,40 @@ TEST(WorkerPool, HelpersTakeTheCurrentPoolWhenItCanServeThem) {
     });
     EXPECT_EQ(ran_on, workers) << "part i on worker i, the last on the caller";
   }
-  // Four parts: more than the pool's two workers and the caller; threads of their own, all four
-  // parts done.
+  // The pool's threads: its two workers and the caller.
+  const std::set<std::thread::id> pool_threads(workers.begin(), workers.end());
+  // Four parts: more than the pool's two workers and the caller; threads of their own (none of
+  // the pool's), all four parts done.
   std::vector<std::atomic<int>> seen(4 * kParallelMinimum);
-  in_parallel_ranges(seen.size(), 4, [&](std::size_t begin, std::size_t end, std::size_t) {
+  std::vector<std::thread::id> four(4);
+  in_parallel_ranges(seen.size(), 4, [&](std::size_t begin, std::size_t end, std::size_t part) {
+    four[part] = std::this_thread::get_id();
     for (std::size_t i = begin; i < end; ++i) seen[i].fetch_add(1);
   });
   for (const auto& s : seen) ASSERT_EQ(s.load(), 1);
-  // Nested: a part of a step asks for a step of its own, which threads of its own serve.
+  EXPECT_EQ(four[3], std::this_thread::get_id());
+  for (std::size_t part = 0; part < 3; ++part) EXPECT_EQ(pool_threads.count(four[part]), 0u);
+  // Nested: a part of a step asks for a step of its own, which threads of its own serve (the
+  // pool is running the outer step): each inner step's first part on a thread of the pool's
+  // neither, its second on the outer part's thread.
   std::vector<std::atomic<int>> inner(2 * 2 * kParallelMinimum);
+  std::vector<std::thread::id> outer_on(2);
+  std::vector<std::thread::id> inner_on(4);
   in_parallel_ranges(2 * kParallelMinimum, 2, [&](std::size_t, std::size_t, std::size_t part) {
+    outer_on[part] = std::this_thread::get_id();
     const std::size_t base = part * 2 * kParallelMinimum;
-    in_parallel_ranges(2 * kParallelMinimum, 2, [&](std::size_t b, std::size_t e, std::size_t) {
+    in_parallel_ranges(2 * kParallelMinimum, 2, [&](std::size_t b, std::size_t e, std::size_t k) {
+      inner_on[2 * part + k] = std::this_thread::get_id();
       for (std::size_t i = b; i < e; ++i) inner[base + i].fetch_add(1);
     });
   });
   for (const auto& s : inner) ASSERT_EQ(s.load(), 1);
+  EXPECT_EQ(outer_on[0], workers[0]);
+  EXPECT_EQ(outer_on[1], std::this_thread::get_id());
+  for (std::size_t part = 0; part < 2; ++part) {
+    EXPECT_EQ(pool_threads.count(inner_on[2 * part]), 0u) << part;
+    EXPECT_EQ(inner_on[2 * part + 1], outer_on[part]) << part;
+  }
   // The radix sort's ranges meet at barriers, so they must run at once: sorted under the pool.
   std::vector<KeyedId> items(3 * kParallelMinimum);
   std::vector<KeyedId> scratch(items.size());

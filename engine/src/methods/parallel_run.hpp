@@ -135,8 +135,11 @@ class ParallelRun {
       watchdog_->resume();
     }
     Watchdog& watchdog = *watchdog_;
+    struct PauseAtEnd {  // on every way out of body
+      Watchdog& watchdog;
+      ~PauseAtEnd() { watchdog.pause(); }
+    } pause_at_end{watchdog};
     body();
-    watchdog.pause();
     // A body shorter than the watchdog's period (a partitioned pass) is looked at here.
     if (options.monitor != nullptr) {
       options.monitor->done.store(progress.total(), std::memory_order_relaxed);
@@ -151,7 +154,8 @@ class ParallelRun {
                       " s; the run was stopped (a deadlock or lost wake-up)");
     }
   }
-  // `threads` threads, each running body(i), joined; an exception leaving body stops the others.
+  // body(i) for i in [0, threads), each on its own thread at once (the last on this one), all
+  // ended on return; an exception leaving body stops the others.
   template <class Body>
   void on_threads(Body&& body) {
     watched([&] {
@@ -168,9 +172,9 @@ class ParallelRun {
         workers->run(threads, guarded);
         return;
       }
-      std::vector<std::thread> pool;
-      for (int i = 0; i < threads; ++i) pool.emplace_back(guarded, i);
-      for (auto& t : pool) t.join();
+      std::vector<std::thread> started;
+      for (int i = 0; i < threads; ++i) started.emplace_back(guarded, i);
+      for (auto& t : started) t.join();
     });
   }
   // The first exception of any thread (the store's limit, out of memory) stops every thread and

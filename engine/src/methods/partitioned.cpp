@@ -187,7 +187,8 @@ class PartitionedRun {
   std::vector<std::uint32_t> pass(std::vector<std::uint32_t>& pending, std::size_t vertices_end,
                                   int parts, PassKind kind) {
     const auto start = std::chrono::steady_clock::now();
-    // A hint, read between insertions; the threads' start and join order everything else.
+    // A hint, read between insertions; the step's start and end (the pool's, or the threads'
+    // start and join: support/worker_pool.hpp) order everything else.
     first_part_done_.store(false, std::memory_order_relaxed);
     const bool defers = kind == PassKind::Round && parts > 1;
     // A round's points are a sample of the input's, so the input's quantiles split them evenly;

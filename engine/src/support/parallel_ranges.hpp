@@ -12,7 +12,8 @@
 namespace dtlab::engine {
 
 // Below this many items a step runs on the caller's thread alone: starting a thread costs about
-// as much as a few thousand items' work.
+// as much as a few thousand items' work, and waking a parked worker (worker_pool.hpp) and
+// waiting for it a few hundred.
 inline constexpr std::size_t kParallelMinimum = 4096;
 
 // in_parallel_ranges' parts on threads started for them (no pool serves them).

@@ -152,7 +152,8 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
   std::vector<std::array<std::size_t, 256>> count(parts);
   std::barrier<> step(static_cast<std::ptrdiff_t>(parts));
   std::atomic<std::size_t> next_part{0};  // the split's parts handed out (relaxed: the barrier
-                                          // before orders the placing, the join the sorting)
+                                          // before orders the placing, the step's end (the
+                                          // pool's, or the join) the sorting)
   auto work = [&](std::size_t part) {
     const std::size_t begin = n * part / parts;
     const std::size_t end = n * (part + 1) / parts;

@@ -1,6 +1,7 @@
 #include "support/worker_pool.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 namespace dtlab::engine {
 
@@ -25,7 +26,7 @@ WorkerPool::~WorkerPool() {
 void WorkerPool::stop() {
   if (threads_.empty()) return;
   stopping_ = true;
-  generation_.fetch_add(1, std::memory_order_release);
+  generation_.fetch_add(1);  // seq_cst, as in run_erased
   generation_.notify_all();
   for (std::thread& t : threads_) t.join();
   threads_.clear();
@@ -48,20 +49,24 @@ void WorkerPool::work(int index) {
         errors_[static_cast<std::size_t>(index)] = std::current_exception();
       }
     }
-    // The job's writes are the caller's once it sees the count reach zero (acq_rel here, acquire
-    // there).
-    if (remaining_.fetch_sub(1, std::memory_order_acq_rel) == 1) remaining_.notify_one();
+    // The job's writes are the caller's once it sees the count reach zero (seq_cst here, for
+    // notify_one's waiter check as in run_erased; acquire there).
+    if (remaining_.fetch_sub(1) == 1) remaining_.notify_one();
   }
 }
 
 void WorkerPool::run_erased(int n, void* job, Trampoline call) {
+  assert(can_run(n));
   running_ = true;
   job_ = job;
   call_ = call;
   worker_jobs_ = n - 1;
   remaining_.store(static_cast<std::uint32_t>(threads_.size()), std::memory_order_relaxed);
   if (!threads_.empty()) {
-    generation_.fetch_add(1, std::memory_order_release);
+    // seq_cst, not just release: notify_all skips the wake-up when it reads no waiter, and the
+    // library counts its waiters with seq_cst operations, which only a seq_cst change here is
+    // ordered against (on x86 the two compile alike).
+    generation_.fetch_add(1);
     generation_.notify_all();
   }
   const auto last = static_cast<std::size_t>(n - 1);

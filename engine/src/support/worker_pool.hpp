@@ -34,7 +34,9 @@ class WorkerPool {
 
   // Runs job(i) for every i in [0, n) at once, each on its own thread: i < n - 1 on worker i,
   // n - 1 on the calling thread; returns when all have ended. An exception from a job is held
-  // until all have ended, then the lowest index's is rethrown. Requires can_run(n).
+  // until all have ended, then the lowest index's is rethrown; jobs that wait on each other (a
+  // barrier, a lock) must catch their own, as the helpers' do, or the others wait for ever.
+  // Requires can_run(n).
   template <class Job>
   void run(int n, Job& job) {
     run_erased(n, &job, [](void* j, int i) { (*static_cast<Job*>(j))(i); });
@@ -51,8 +53,9 @@ class WorkerPool {
 
   std::vector<std::thread> threads_;
   std::vector<std::exception_ptr> errors_;  // per index, this step's
-  // Written by the caller before it bumps `generation_` (release); read by the workers after
-  // they see the new generation (acquire).
+  // Written by the caller before it bumps `generation_`; read by the workers after they see the
+  // new generation. Each worker's last read of them comes before its decrement of `remaining_`,
+  // which the caller sees reach zero before it writes them again for the next step.
   void* job_ = nullptr;
   Trampoline call_ = nullptr;
   int worker_jobs_ = 0;  // indices [0, worker_jobs_) run on workers this step
