@@ -13,7 +13,6 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -28,7 +27,7 @@
 #include "methods/watchdog.hpp"
 #include "methods/work_source.hpp"
 #include "repair/splay_repair.hpp"
-#include "support/worker_pool.hpp"
+#include "support/parallel_ranges.hpp"
 
 namespace dtlab::engine {
 
@@ -159,22 +158,18 @@ class ParallelRun {
   template <class Body>
   void on_threads(Body&& body) {
     watched([&] {
-      auto guarded = [&](int i) {
-        try {
-          body(i);
-        } catch (...) {
-          record_error();
-        }
-      };
-      // The run's workers (the driver's pool, the last index on this thread), or threads
-      // started for this call.
-      if (WorkerPool* workers = WorkerPool::current(); workers && workers->can_run(threads)) {
-        workers->run(threads, guarded);
-        return;
-      }
-      std::vector<std::thread> started;
-      for (int i = 0; i < threads; ++i) started.emplace_back(guarded, i);
-      for (auto& t : started) t.join();
+      // One index a thread: the run's pool (the last on this thread), or threads started for
+      // this call (support/parallel_ranges.hpp).
+      in_parallel_ranges(
+          static_cast<std::size_t>(threads), threads,
+          [&](std::size_t, std::size_t, std::size_t i) {
+            try {
+              body(static_cast<int>(i));
+            } catch (...) {
+              record_error();
+            }
+          },
+          /*minimum=*/0);
     });
   }
   // The first exception of any thread (the store's limit, out of memory) stops every thread and

@@ -4,11 +4,9 @@
 #include <array>
 #include <atomic>
 #include <barrier>
-#include <thread>
 #include <vector>
 
 #include "support/parallel_ranges.hpp"
-#include "support/worker_pool.hpp"
 
 namespace dtlab::engine {
 
@@ -222,17 +220,10 @@ void stable_sort_by_key(KeyedId* items, KeyedId* scratch, std::size_t n, int thr
     }
     if (from != items) std::copy(from + begin, from + end, items + begin);
   };
-  // Every range's thread must run at once (the barriers): the pool's, or threads started here.
-  if (WorkerPool* pool = WorkerPool::current(); pool && pool->can_run(static_cast<int>(parts))) {
-    auto range = [&work](int part) { work(static_cast<std::size_t>(part)); };
-    pool->run(static_cast<int>(parts), range);
-    return;
-  }
-  std::vector<std::thread> helpers;
-  helpers.reserve(parts - 1);
-  for (std::size_t part = 0; part + 1 < parts; ++part) helpers.emplace_back(work, part);
-  work(parts - 1);
-  for (std::thread& h : helpers) h.join();
+  // One range a thread, all at once (the barriers): the run's pool, or threads started for them.
+  in_parallel_ranges(
+      parts, static_cast<int>(parts),
+      [&work](std::size_t, std::size_t, std::size_t part) { work(part); }, /*minimum=*/0);
 }
 
 }  // namespace dtlab::engine
